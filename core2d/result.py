@@ -1,0 +1,92 @@
+"""Plain data produced by sensing one slice (DESIGN.md "Outputs per slice").
+
+W1, W2 and W3 follow §3.1 of the paper:
+
+* W1 -- contour traced by the probe tip (polylines of tip contacts);
+* W2 -- straight-line approximation L_{A}^{B} of an area with Dist(A, B) < eps;
+* W3 -- lid A_jB_j of a never-touching area verified by probing (Area(G_j) = 0).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["AreaRecord", "SenseStats", "SliceResult"]
+
+
+@dataclass
+class AreaRecord:
+    """One unknown area A_iB_i (§3.3) and what became of it.
+
+    index : int
+        Running number i.
+    a, b : (2,) float
+        A_i and B_i. The unknown contour C_{A_i}^{B_i} runs from A_i to B_i,
+        and V_i (Def. 3) -- the free side -- lies on the right when moving
+        from B_i to A_i.
+    parent : int
+        Index of the area whose processing registered this one (-1 for the
+        bootstrap).
+    rule : str
+        What created it: ``"bootstrap"``, ``"case2-1"``, ``"case2-2"``,
+        ``"case2-3"``, ``"case3"``, ``"case4"``, ``"fig12c"``, ``"escape"``.
+    outcome : str
+        How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,
+        ``"W3"``, ``"split"`` (children registered), ``"unknown"`` (budget).
+    """
+
+    index: int
+    a: np.ndarray
+    b: np.ndarray
+    parent: int
+    rule: str
+    outcome: str = "pending"
+
+
+@dataclass
+class SenseStats:
+    """Cost counters of one slice (the ``stats`` object of sensing.json)."""
+
+    motions: int = 0
+    rays: int = 0
+    casts: int = 0
+    joint_path: float = 0.0
+    pushes: int = 0
+    areas: int = 0
+    escapes: int = 0
+    budget_hit: bool = False
+    seconds: float = 0.0
+    cast_seconds: float = 0.0
+
+    def as_dict(self) -> dict:
+        return {
+            "motions": int(self.motions),
+            "rays": int(self.rays),
+            "joint_path": float(self.joint_path),
+            "pushes": int(self.pushes),
+            "areas": int(self.areas),
+            "escapes": int(self.escapes),
+            "budget_hit": bool(self.budget_hit),
+            "seconds": float(self.seconds),
+        }
+
+
+@dataclass
+class SliceResult:
+    """Everything the planner reports for one slice, in the slice's 2D frame.
+
+    w1 : list of (k, 2) float -- traced polylines.
+    w2 : list of (2, 2) float -- approximated segments (length < eps).
+    w3 : list of (2, 2) float -- lids of never-touching areas.
+    unknown : list of (2, 2) float -- areas still unknown when a budget hit.
+    areas : list of AreaRecord -- the A_iB_i log.
+    stats : SenseStats
+    """
+
+    w1: list = field(default_factory=list)
+    w2: list = field(default_factory=list)
+    w3: list = field(default_factory=list)
+    unknown: list = field(default_factory=list)
+    areas: list = field(default_factory=list)
+    stats: SenseStats = field(default_factory=SenseStats)

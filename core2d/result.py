@@ -42,6 +42,7 @@ class AreaRecord:
     parent: int
     rule: str
     outcome: str = "pending"
+    note: str = ""
 
 
 @dataclass

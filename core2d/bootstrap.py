@@ -1,0 +1,84 @@
+"""Bootstrap of a closed slice: probing from the free area F (DESIGN.md).
+
+§4.1 starts by inserting the probe from F toward the unknown area. On a
+closed cross-section the robot knows only a bounding circle of its
+workspace: it inserts the probe from points around that circle aimed at its
+centre (finger probing), clockwise, and refines adaptively between
+neighbouring insertions whose contacts are far apart. Each pair of
+neighbouring contacts A, B with the two postures that found them becomes an
+unknown area A_iB_i whose G_i is the region of those postures (Def. 1).
+Clockwise order makes C_A^B run with the material on the right, so V_i
+(Def. 3) is the outside, as in the paper's Fig. 3.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from core2d.areas import Area
+from core2d.probe import unit
+from core2d.regions import Posture, in_V
+
+__all__ = ["bootstrap"]
+
+
+def _probe_from(probe, angle):
+    """Insert radially from the circle point at ``angle``; (contact, posture)."""
+    start = probe.center + probe.radius * unit(angle)
+    probe.approach(start, -unit(angle))
+    r = probe.insert(2 * probe.radius)
+    c = r.tip_contact
+    if c is None:
+        return None
+    return c.point, Posture(r.joint, r.direction)
+
+
+def bootstrap(probe, count=12, far=None, max_depth=3):
+    """Find the initial unknown areas of a closed slice.
+
+    Parameters
+    ----------
+    probe : Probe
+    count : int -- initial insertions, evenly spaced around the circle.
+    far : float -- refine between neighbours farther apart than this
+        (default: workspace radius / 2).
+    max_depth : int -- refinement levels.
+
+    Returns
+    -------
+    list of Area (rule ``"bootstrap"``), in clockwise order.
+    """
+    far = probe.radius / 2 if far is None else far
+    angles = list(np.pi / 2 - 2 * np.pi * np.arange(count) / count)
+    step = 2 * np.pi / count
+    found = {a: _probe_from(probe, a) for a in angles}
+    for _ in range(max_depth):
+        step /= 2
+        extra = []
+        for k, a in enumerate(angles):
+            b = angles[(k + 1) % len(angles)]
+            fa, fb = found[a], found[b]
+            if fa is None or fb is None or np.linalg.norm(fa[0] - fb[0]) > far:
+                extra.append(a - step)
+        if not extra:
+            break
+        for a in extra:
+            found[a] = _probe_from(probe, a)
+        angles = sorted(angles + extra, reverse=True)
+    hits = [found[a] for a in angles if found[a] is not None]
+    areas = []
+    for k, (pa, posa) in enumerate(hits):
+        pb, posb = hits[(k + 1) % len(hits)]
+        if len(hits) > 1:
+            areas.append(_oriented(pa, pb, posa, posb))
+    return areas
+
+
+def _oriented(pa, pb, posa, posb):
+    """Label the pair so the postures' joints lie in V_i (Def. 3): the probe
+    came from the free side, as in Fig. 5(a), (c), (d) where G_i cap V_i = G_i.
+    Neighbouring radial insertions can cross inside a pocket, so the angular
+    order alone does not give the order along the contour."""
+    joints = (posa.joint + posb.joint) / 2
+    if in_V(joints, pa, pb) or np.allclose(pa, pb):
+        return Area(pa, pb, posa, posb)
+    return Area(pb, pa, posb, posa)

@@ -1,0 +1,133 @@
+"""Compliant tracing motion (§4.3): a guarded move of the simulator.
+
+The joint moves along a fixed direction v while a constant torque
+tau = tau0 sgn(v, t*) (clockwise positive, eq. 2) keeps the probe pressed
+against the environment. The simulator resolves the continuous motion in
+micro-steps: after each joint step the probe settles -- it swings with the
+torque until it touches, or yields against the torque when the step pressed
+it into the surface. A step whose contact point moves discontinuously is
+halved until either the motion is continuous again or the step is below
+``tol``: then it is a real contact point jump (Case 2) and the motion stops.
+The controller also stops when the probe loses every contact (Case 2-3),
+when v.t > 0 is detected (Case 3, if guarded), when the joint cannot move
+along v (Case 4), or when a part of the probe reaches ``stop_at`` (P_fin).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from core2d.readings import TIP, Contact
+
+__all__ = ["compliant_trace", "MAX_SETTLE"]
+
+MAX_SETTLE = np.pi / 3  # largest swing the torque may cause in one step
+_MAX_YIELD = np.pi / 6
+
+
+def _settle(probe, joint, theta, rot_dir):
+    """Pose reached on ``joint`` from ``theta`` under torque ``rot_dir``.
+
+    Returns ``(status, theta, contact)`` with status ``"ok"``, ``"lost"``
+    (swung MAX_SETTLE without touching) or ``"jammed"`` (no free angle
+    within _MAX_YIELD against the torque).
+    """
+    d0, _ = probe._fan(joint, [theta])
+    if not np.isfinite(d0[0]):
+        found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True)
+        if found is None:
+            return "lost", theta + rot_dir * MAX_SETTLE, None
+    else:
+        found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False)
+        if found is None:
+            return "jammed", theta, None
+    free, (d, p) = found
+    return "ok", free, probe._contact_at(d, p, rot_dir)
+
+
+def _segment_distance(point, a, b) -> float:
+    ab = b - a
+    s = np.clip((point - a) @ ab / (ab @ ab), 0.0, 1.0)
+    return float(np.linalg.norm(a + s * ab - point))
+
+
+def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
+                    guard_push=True, max_steps=20000):
+    """Trace with the tip from the current contact; see the module doc.
+
+    Parameters
+    ----------
+    probe : Probe
+    v : (2,) float -- joint moving direction v_i (unit).
+    tau : int -- torque sign, +1 clockwise, -1 counter-clockwise (eq. 2).
+    max_dist : float -- longest joint travel.
+    delta : float -- nominal joint step, default eps / 4.
+    stop_at : (2,) float, optional -- P_fin; stop when the probe reaches it.
+    guard_push : bool -- stop as soon as v.t > 0 (Case 3).
+
+    Returns
+    -------
+    Reading with ``event`` and the recorded tip ``trace``.
+    """
+    probe._motion()
+    v = np.asarray(v, float) / np.linalg.norm(v)
+    rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
+    delta0 = probe.eps / 4 if delta is None else float(delta)
+    dmin = probe.tol / 2
+    jump = probe.eps / 2
+    step = delta0
+    travelled = 0.0
+    first = probe.sense()
+    last = first.tip_contact
+    trace = [last.point] if last is not None else []
+    before = (probe.joint.copy(), probe.direction.copy())
+    event, primary = "limit", None
+    for _ in range(max_steps):
+        t = probe.direction
+        if stop_at is not None and _segment_distance(
+                np.asarray(stop_at, float), probe.joint, probe.tip) <= 2 * probe.tol:
+            event = "reached"
+            break
+        if v @ t > 0:
+            if guard_push:
+                event = "pushing"
+                break
+            probe.stats.pushes += 1
+        if travelled >= max_dist:
+            event = "done"
+            break
+        h = min(step, max_dist - travelled)
+        joint = probe.joint + h * v
+        status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
+        continuous = (
+            status == "ok" and contact.face == TIP and last is not None
+            and np.linalg.norm(contact.point - last.point) <= jump
+        )
+        if not continuous and h > dmin:
+            step = h / 2
+            continue
+        if status == "jammed":
+            event = "blocked"
+            break
+        before = (probe.joint.copy(), probe.direction.copy())
+        probe.stats.joint_path += h
+        travelled += h
+        probe.joint, probe.theta = joint, theta
+        if status == "lost":
+            event = "lost"
+            break
+        if not continuous:
+            event, primary = "jump", contact
+            break
+        if stop_at is not None and last is not None and _segment_distance(
+                np.asarray(stop_at, float), last.point, contact.point) <= 2 * probe.tol:
+            trace.append(np.asarray(stop_at, float))
+            event = "reached"  # the tip passed P_fin during this step
+            break
+        last = contact
+        trace.append(contact.point)
+        step = min(delta0, 2 * step)
+    kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0],
+              before_direction=before[1])
+    if primary is not None:
+        kw["primary"] = Contact(primary.point, primary.face, primary.along)
+    return probe.sense(event, **kw)

@@ -1,0 +1,160 @@
+"""Local concave point search (§4.2): initial pass planning and bisection.
+
+* :func:`initial_pass` -- Theorem 1: move the probe along the line through a
+  point of L_{A0}^{B0} cap G_i cap V_i and the centre of L_{A_i}^{B_i} (or the
+  common point of the two triangles of G_i, Fig. 5(c)). In a closed slice the
+  known-free part of G_i cap V_i is what lies outside the workspace circle:
+  it plays the role of L_{A0}^{B0}.
+* :func:`bisection` -- §4.2.2 (i)-(iv): swing / divide / insert, the swing
+  bounded so the probe never leaves the segments P_i^(j)A_i, P_i^(j)B_i (T_i^(j),
+  Theorem 2) and the tip stays in T_i^(j) cap V_i cap G_i except across
+  L_{A_i}^{B_i} (Theorem 3). Ends in a final state of Fig. 10 with (Y1, Y2)
+  of Definition 5.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import Point
+
+from core2d.readings import TIP
+from core2d.regions import G_region, V_polygon, common_point, in_V, polygonal
+
+__all__ = ["initial_pass", "bisection", "LocalResult", "wrap"]
+
+
+def wrap(angle):
+    return (angle + np.pi) % (2 * np.pi) - np.pi
+
+
+def _start_point(probe, G, a, b):
+    """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the part of the
+    workspace circle inside G_i cap V_i (or G_i cap V_i's far end)."""
+    GV = polygonal(G.intersection(V_polygon(a, b, probe.radius + probe.length)))
+    if GV.is_empty or GV.area <= 0:
+        return None, GV
+    ring = Point(*probe.center).buffer(probe.radius, 256).exterior
+    arc = ring.intersection(GV)
+    if not arc.is_empty and arc.length > 0:
+        line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
+        return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
+    mid = (np.asarray(a) + np.asarray(b)) / 2
+    far = max(GV.exterior.coords if GV.geom_type == "Polygon" else
+              shapely.get_coordinates(GV), key=lambda q: np.linalg.norm(np.subtract(q, mid)))
+    return np.asarray(far, float), GV
+
+
+def initial_pass(probe, area, G=None):
+    """Theorem 1 insertion for ``area``; returns (Reading, G_i) or (None, G_i).
+
+    G_i defaults to the region of the two postures (Definition 1); for a
+    single probe detection the caller passes the triangle swept about the
+    tip. G_i with Area(G_i) = 0 (a line segment) returns (None, G_i): the
+    caller categorises A_iB_i as W3.
+    """
+    if G is None:
+        G = G_region(area.a, area.b, area.pose_a, area.pose_b)
+    if G.area <= probe.tol * max(area.dist, probe.tol):
+        return None, G
+    start, GV = _start_point(probe, G, area.a, area.b)
+    if start is None:
+        return None, G
+    aim = common_point(area.a, area.b, area.pose_a, area.pose_b)
+    if aim is None or GV.geom_type == "Polygon":
+        aim = (area.a + area.b) / 2
+    t = aim - start
+    if np.linalg.norm(t) < probe.tol:
+        return None, G
+    probe.approach(start, t)
+    r = probe.insert(2.5 * probe.radius)
+    return (r if r.tip_contact is not None else None), G
+
+
+@dataclass
+class LocalResult:
+    """Final state of the bisection (Fig. 10, Definition 5).
+
+    reading : Reading at D_i. point : (2,) float -- D_i (tip contact).
+    Y1 : 1 tip only, 2 multiple contacts. Y2 : 0 full constraint, 1 clockwise
+    constrained, -1 counter-clockwise constrained.
+    iterations : int. repeated : bool -- converged onto A_i or B_i.
+    """
+
+    reading: object
+    point: np.ndarray
+    Y1: int
+    Y2: int
+    iterations: int
+    repeated: bool = False
+
+
+def _bounds(joint, theta, a, b):
+    """Signed angles from ``theta`` to the rays P->A and P->B (T_i^(j))."""
+    da = wrap(np.arctan2(*(np.asarray(a) - joint)[::-1]) - theta)
+    db = wrap(np.arctan2(*(np.asarray(b) - joint)[::-1]) - theta)
+    ccw = max(da, db, 0.0)
+    cw = max(-da, -db, 0.0)
+    return ccw, cw
+
+
+def _tip_bound(probe, G, a, b, theta, rot_dir, limit):
+    """Theorem 3: largest swing (<= limit) keeping the tip, while it is on the
+    free side of L_AB, inside G_i (checked on the swept arc)."""
+    if limit <= 0:
+        return 0.0
+    n = max(4, int(limit / probe.fan_step))
+    angs = theta + rot_dir * np.linspace(0, limit, n + 1)[1:]
+    tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
+    free_side = in_V(tips, a, b)
+    inside = shapely.contains_xy(G.buffer(probe.tol), tips[:, 0], tips[:, 1])
+    bad = free_side & ~inside
+    if not bad.any():
+        return limit
+    i = int(np.argmax(bad))
+    return float(limit * i / n)
+
+
+def bisection(probe, area, G, reading, max_iter=60):
+    """Bisection local concave point search from an initial tip contact.
+
+    Rotation is constrained in a direction when the torque sensor reports it
+    blocked (environment) or when the swing bound of Theorems 2/3 is used up
+    (the boundary of T_i^(n), Fig. 10(b)).
+    """
+    r = reading
+    last = r.tip_contact.point
+    small = 0
+    it = 0
+    con_ccw = con_cw = False
+    for it in range(1, max_iter + 1):
+        ccw_lim, cw_lim = _bounds(probe.joint, probe.theta, area.a, area.b)
+        ccw_lim = _tip_bound(probe, G, area.a, area.b, probe.theta, 1, ccw_lim)
+        cw_lim = _tip_bound(probe, G, area.a, area.b, probe.theta, -1, cw_lim)
+        con_ccw = r.blocked_ccw or ccw_lim <= probe.ang_tol
+        con_cw = r.blocked_cw or cw_lim <= probe.ang_tol
+        if con_ccw and con_cw:
+            break  # Fig. 10(a)/(c), or (b) with one side held by the boundary
+        limit, rot = max(((ccw_lim, 1),) * (not con_ccw) + ((cw_lim, -1),) * (not con_cw))
+        theta0 = probe.theta
+        probe.swing(rot, limit)  # (i) swing
+        phi = probe.theta - theta0
+        probe.turn_to(theta0 + phi / 2)  # (ii) dividing
+        r = probe.insert(2.5 * probe.radius)  # (iii) inserting
+        tip = r.tip_contact
+        if tip is None:
+            return None
+        moved = np.linalg.norm(tip.point - last)
+        last = tip.point
+        small = small + 1 if moved < probe.tol else 0
+        if small >= 2:
+            con_ccw, con_cw = r.blocked_ccw or con_ccw, r.blocked_cw or con_cw
+            break
+    tip = r.tip_contact
+    if tip is None:
+        return None
+    Y1 = 1 if all(c.face == TIP for c in r.contacts) else 2
+    Y2 = 0 if con_cw == con_ccw else (1 if con_cw else -1)
+    near = min(np.linalg.norm(tip.point - area.a), np.linalg.norm(tip.point - area.b))
+    return LocalResult(r, tip.point, Y1, Y2, it, repeated=near <= 2 * probe.tol)

@@ -1,0 +1,250 @@
+"""Ground-truth metrics of one sensed slice (DESIGN.md "Metrics").
+
+Evaluation code: it reads the true contour, the planner never does.
+
+Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
+
+* the true contour is sampled at sub-segment midpoints no farther apart than
+  ``spacing`` (:func:`core2d.reachability.sample_contour`); each sample
+  stands for its piece of contour length; reachability is exact per sample
+  (:func:`core2d.reachability.reachable`);
+* **coverage** -- length of reachable samples within ``tol`` of W1 u W2,
+  over the reachable length. ``eps / 2`` is the natural tolerance: every
+  point of a W2 chord ``L_A^B`` with ``Dist(A, B) < eps`` lies within
+  ``eps / 2`` of ``A`` or ``B``, and the eps/2-circle assumption of §3.2 is
+  what lets the chord stand for ``C_A^B``;
+* **precision** -- length share of the detected geometry (W1 polylines and
+  W2 segments, cut into pieces <= ``spacing``) within ``tol`` of the true
+  contour; the two directed Hausdorff distances use the same samples
+  (plus the detected vertices), so they are exact to ``spacing / 2``;
+* **W3 soundness** -- a lid ``(A, B)`` covers ``C_A^B``: A and B are
+  projected to the nearest contour point and the arc runs from A to B with
+  the material on the right. Loops keep the material on their left (outer
+  CCW, holes CW), so ``C_A^B`` is the arc of *decreasing* loop arc length
+  from A to B, on outer loops and holes alike. ``w3_soundness`` = truly
+  unreachable lidded length / (lidded length + chord length of lids whose
+  ends project to different loops); those lids are counted in
+  ``w3_cross_loop`` and are unsound, as is a lid with more than ``tol`` of
+  reachable contour under it (``w3_unsound_count``).
+
+Ratios whose denominator is 0 are 1.0 (nothing to miss, nothing wrong);
+Hausdorff distances with an empty side are ``None``.
+"""
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
+
+__all__ = ["slice_metrics", "total_metrics", "lid_arcs"]
+
+_RATIOS = {"coverage": ("covered_length", "reachable_length"),
+           "precision": ("precise_length", "detected_length")}
+_MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol", "spacing")
+
+
+def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
+    """Consecutive vertex pairs of open polylines; a lone vertex gives a zero-length segment."""
+    a, b = [np.zeros((0, 2))], [np.zeros((0, 2))]
+    for pl in polylines:
+        pl = np.asarray(pl, dtype=np.float64).reshape(-1, 2)
+        if len(pl) == 1:
+            pl = np.vstack([pl, pl])
+        a.append(pl[:-1])
+        b.append(pl[1:])
+    return np.concatenate(a), np.concatenate(b)
+
+
+def _nearest(tree, points) -> tuple[np.ndarray, np.ndarray]:
+    """(m,) nearest tree item and distance for every point."""
+    idx, dist = tree.query_nearest(shapely.points(points), all_matches=False, return_distance=True)
+    item = np.empty(len(points), dtype=np.int64)
+    d = np.empty(len(points))
+    item[idx[0]], d[idx[0]] = idx[1], dist
+    return item, d
+
+
+def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
+    """Contour arcs ``C_A^B`` under segments ``(A, B)`` (W3 lids or unknown areas).
+
+    Parameters
+    ----------
+    loops : list of (k, 2) float -- the true contour.
+    lids : list of (2, 2) float -- segments A -> B.
+    samples : ContourSamples -- samples of ``loops``.
+
+    Returns
+    -------
+    dict with ``mask`` (m,) bool (samples under some same-loop lid),
+    ``cross_loop`` (n,) bool, ``offset`` (n,) float (largest distance of A or
+    B to the contour), ``arc_length`` (n,) float (0 for cross-loop lids) and
+    ``member`` (n, m) bool (samples under each lid).
+
+    Examples
+    --------
+    >>> sq = [np.array([[0., 0.], [4., 0.], [4., 4.], [0., 4.]])]
+    >>> from core2d.reachability import sample_contour
+    >>> arcs = lid_arcs(sq, [np.array([[4., 2.], [2., 4.]])], sample_contour(sq, 0.5))
+    >>> float(arcs["arc_length"][0])  # down, along the bottom, up, to the middle of the top
+    12.0
+    """
+    lids = np.asarray(lids, dtype=np.float64).reshape(-1, 2, 2)
+    n, m = len(lids), len(samples.points)
+    out = dict(mask=np.zeros(m, dtype=bool), cross_loop=np.zeros(n, dtype=bool),
+               offset=np.zeros(n), arc_length=np.zeros(n), member=np.zeros((n, m), dtype=bool))
+    if n == 0:
+        return out
+    a, b, loop = contour_edges(loops)
+    e = b - a
+    elen = np.hypot(*e.T)
+    start = np.cumsum(elen) - elen
+    edge_s = start - (np.cumsum(samples.loop_lengths) - samples.loop_lengths)[loop]
+    tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+    ends = lids.reshape(-1, 2)  # A0, B0, A1, B1, ...
+    edge, dist = _nearest(tree, ends)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.nan_to_num(np.clip(np.einsum("ij,ij->i", ends - a[edge], e[edge]) / elen[edge] ** 2, 0, 1))
+    s = (edge_s[edge] + t * elen[edge]).reshape(n, 2)
+    lp = loop[edge].reshape(n, 2)
+    out["offset"] = dist.reshape(n, 2).max(axis=1)
+    out["cross_loop"] = lp[:, 0] != lp[:, 1]
+    for i in np.flatnonzero(~out["cross_loop"]):
+        length = samples.loop_lengths[lp[i, 0]]
+        arc = (s[i, 0] - s[i, 1]) % length  # walk from A with decreasing s
+        under = (samples.loop == lp[i, 0]) & ((s[i, 0] - samples.s) % length <= arc)
+        out["member"][i] = under
+        out["arc_length"][i] = arc
+    out["mask"] = out["member"].any(axis=0)
+    return out
+
+
+def slice_metrics(loops, result, eps: float, tol: float | None = None,
+                  spacing: float | None = None, samples=None) -> dict:
+    """Metrics of one :class:`core2d.result.SliceResult` against the true contour.
+
+    Parameters
+    ----------
+    loops : list of (k, 2) float -- true contour of the slice (outer CCW, holes CW).
+    result : SliceResult
+    eps : float -- the planner's eps.
+    tol : float, optional -- distance tolerance, default ``eps / 2``.
+    spacing : float, optional -- sampling step, default ``tol / 2``.
+    samples : (ContourSamples, (m,) bool), optional -- a cached
+        :func:`core2d.reachability.reachable_samples` of ``loops`` at ``spacing``.
+
+    Returns
+    -------
+    dict of JSON-serialisable numbers (see module doc), plus the counters of
+    ``result.stats.as_dict()`` under their own names.
+    """
+    tol = 0.5 * eps if tol is None else float(tol)
+    spacing = 0.5 * tol if spacing is None else float(spacing)
+    samp, reach = reachable_samples(loops, spacing) if samples is None else samples
+    w = samp.lengths
+    a, b, _ = contour_edges(loops)
+    true_tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+
+    # detected geometry: W1 polylines and W2 segments
+    w1a, w1b = _segments(result.w1)
+    w2a, w2b = _segments(result.w2)
+    da, db = np.concatenate([w1a, w2a]), np.concatenate([w1b, w2b])
+    if len(da):
+        det_tree = shapely.STRtree(shapely.linestrings(np.stack([da, db], axis=1)))
+        _, d_true = _nearest(det_tree, samp.points)
+        seg, frac, dl = subdivide(da, db, spacing)
+        pts = np.concatenate([da[seg] + frac[:, None] * (db - da)[seg], da, db])
+        _, d_det = _nearest(true_tree, pts)
+        d_det_pieces = d_det[: len(seg)]
+    else:
+        d_true = np.full(len(w), np.inf)
+        dl = d_det = d_det_pieces = np.zeros(0)
+    covered = reach & (d_true <= tol)
+    reachable_length = float(w[reach].sum())
+    detected_length = float(dl.sum())
+
+    # W3 lids and unknown areas
+    lids = lid_arcs(loops, result.w3, samp)
+    unk = lid_arcs(loops, result.unknown, samp)
+    chords = np.array([np.hypot(*np.subtract(*np.asarray(lid, dtype=float).reshape(2, 2)))
+                       for lid in result.w3])
+    cross_length = float(chords[lids["cross_loop"]].sum()) if len(chords) else 0.0
+    lidded = float(w[lids["mask"]].sum())
+    lid_unreachable = float(w[lids["mask"] & ~reach].sum())
+    per_lid_reachable = lids["member"].astype(float) @ (w * reach)
+    unsound = lids["cross_loop"] | (per_lid_reachable > tol)
+
+    out = {
+        "eps": float(eps),
+        "tol": tol,
+        "spacing": spacing,
+        "contour_length": float(w.sum()),
+        "hole_length": float(w[samp.is_hole].sum()),
+        "reachable_length": reachable_length,
+        "covered_length": float(w[covered].sum()),
+        "coverage": float(w[covered].sum() / reachable_length) if reachable_length > 0 else 1.0,
+        "w1_count": len(result.w1),
+        "w1_length": float(np.hypot(*(w1b - w1a).T).sum()),
+        "w2_count": len(result.w2),
+        "detected_length": detected_length,
+        "precise_length": float(dl[d_det_pieces <= tol].sum()),
+        "precision": float(dl[d_det_pieces <= tol].sum() / detected_length) if detected_length > 0 else 1.0,
+        "hausdorff_detected_to_true": float(d_det.max()) if len(d_det) else None,
+        "hausdorff_true_reachable_to_detected": (float(d_true[reach].max())
+                                                 if len(da) and reach.any() else None),
+        "w3_count": len(result.w3),
+        "w3_lidded_length": lidded,
+        "w3_unreachable_length": lid_unreachable,
+        "w3_reachable_length": lidded - lid_unreachable,
+        "w3_cross_loop": int(lids["cross_loop"].sum()),
+        "w3_cross_loop_length": cross_length,
+        "w3_off_contour": int((lids["offset"] > tol).sum()),
+        "w3_unsound_count": int(unsound.sum()),
+        "w3_soundness": (lid_unreachable / (lidded + cross_length)) if lidded + cross_length > 0 else 1.0,
+        "unknown_count": len(result.unknown),
+        "unknown_length": float(w[unk["mask"]].sum()),
+        "unknown_reachable_length": float(w[unk["mask"] & reach].sum()),
+    }
+    out.update(result.stats.as_dict())
+    return out
+
+
+def total_metrics(metrics: list[dict]) -> dict:
+    """Aggregate :func:`slice_metrics` dicts over slices.
+
+    Lengths and counters are summed, ``coverage``, ``precision`` and
+    ``w3_soundness`` recomputed from the summed lengths (so they are length
+    weighted), Hausdorff distances (and eps, tol, spacing) are maxima over
+    the slices that have one, ``budget_hit`` is any and ``budget_hits`` the
+    number of slices that hit the budget.
+
+    Examples
+    --------
+    >>> m = [{"covered_length": 1.0, "reachable_length": 4.0, "coverage": 0.25},
+    ...      {"covered_length": 3.0, "reachable_length": 4.0, "coverage": 0.75}]
+    >>> total_metrics(m)["coverage"]
+    0.5
+    """
+    out: dict = {"slices": len(metrics)}
+    keys = list(dict.fromkeys(k for m in metrics for k in m))
+    for k in keys:
+        vals = [m[k] for m in metrics if m.get(k) is not None]
+        if k in _MAX_KEYS:
+            out[k] = float(max(vals)) if vals else None
+        elif k == "budget_hit":
+            out["budget_hit"] = bool(any(vals))
+            out["budget_hits"] = int(sum(bool(v) for v in vals))
+        elif k in _RATIOS or k == "w3_soundness":
+            continue
+        elif all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in vals):
+            out[k] = int(sum(vals))
+        elif all(isinstance(v, (int, float, np.number)) and not isinstance(v, bool) for v in vals):
+            out[k] = float(sum(vals))
+    for k, (num, den) in _RATIOS.items():
+        if num in out or den in out:
+            n, d = out.get(num, 0.0), out.get(den, 0.0)
+            out[k] = float(n / d) if d > 0 else 1.0
+    if "w3_unreachable_length" in out:
+        den = out.get("w3_lidded_length", 0.0) + out.get("w3_cross_loop_length", 0.0)
+        out["w3_soundness"] = float(out["w3_unreachable_length"] / den) if den > 0 else 1.0
+    return out

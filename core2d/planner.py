@@ -1,0 +1,201 @@
+"""The pulling-motion sensing algorithm on one closed slice (§4, Fig. 16).
+
+The planner decides motions from sensor readings and from what it has
+recorded itself; it never sees the contour. Per unknown area A_iB_i:
+
+1. Dist(A_i, B_i) < eps  ->  W2 (§3.1, §4.4).
+2. Single probe detection (Fig. 6): G_i by rotating about the tip;
+   Area(G_i) = 0  ->  W3 (§4.2.1).
+3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i).
+4. Bisection local concave point search (Theorems 2, 3) to D_i; when it
+   finds A_i or B_i again, infinite loop escape (§4.4) splits A_iB_i at C.
+5. Tracing motion planning (Theorem 4) from D_i on one or both sides; the
+   events Case 1 - 4 register new areas by the rule of §4.3.3 (and the
+   Fig. 12(c) split for a one-sided start).
+
+Areas are processed breadth first until none is left or a budget is hit.
+"""
+from __future__ import annotations
+
+import time
+from collections import deque
+
+import numpy as np
+from shapely.geometry import Polygon
+
+from core2d.areas import Area, register
+from core2d.bootstrap import bootstrap
+from core2d.local_search import bisection, initial_pass
+from core2d.probe import Probe
+from core2d.readings import LEFT
+from core2d.regions import Posture
+from core2d.result import AreaRecord, SliceResult
+from core2d.tracing import plan_sides, trace_side
+
+__all__ = ["sense_slice", "Budget"]
+
+
+class Budget:
+    """Motion / area budget: a run always ends."""
+
+    def __init__(self, probe, max_motions=20000, max_areas=4000):
+        self.probe, self.max_motions, self.max_areas = probe, max_motions, max_areas
+        self.areas = 0
+        self.hit = False
+
+    def __call__(self) -> bool:
+        ok = self.probe.stats.motions < self.max_motions and self.areas < self.max_areas
+        self.hit |= not ok
+        return ok
+
+
+def _same(p, q, tol):
+    return float(np.linalg.norm(np.asarray(p) - np.asarray(q))) <= tol
+
+
+def _reestablish(probe, pose):
+    """Bring the probe back along the line of ``pose`` until the tip touches."""
+    probe.approach(pose.joint + probe.length * pose.direction, pose.direction)
+    return probe.insert(2.5 * probe.radius)
+
+
+def _single_detection(probe, area):
+    """Definition 1, Fig. 6(a): A_i and B_i found by one posture. Rotate the
+    probe about the tip, away from the body contact, until it touches; G_i is
+    the triangle swept. Returns G_i, or None when Area(G_i) = 0 (Fig. 6(b))."""
+    pose = area.pose_a
+    r = _reestablish(probe, pose)
+    if r.tip_contact is None:
+        return None
+    tip = probe.tip.copy()
+    body = [c for c in r.contacts if c.face != "tip"]
+    rot = -1 if (body and body[0].face == LEFT) else 1
+    r = probe.pivot(rot, np.pi / 4)
+    if abs(r.angle) <= 4 * probe.ang_tol:
+        return None
+    return Polygon([tip, pose.joint, r.joint])
+
+
+class _Run:
+    def __init__(self, probe, eps, budget):
+        self.probe, self.eps, self.budget = probe, eps, budget
+        self.result = SliceResult()
+        self.queue = deque()
+
+    def add(self, area):
+        area.index = len(self.result.areas)
+        self.budget.areas += 1
+        self.result.areas.append(AreaRecord(area.index, area.a.copy(), area.b.copy(),
+                                             area.parent, area.rule))
+        self.queue.append(area)
+
+    def close(self, area, outcome, note=""):
+        rec = self.result.areas[area.index]
+        rec.outcome, rec.note = outcome, note
+        if outcome in ("W2", "W3"):
+            getattr(self.result, outcome.lower()).append(np.stack([area.a, area.b]))
+
+    def children(self, area, kids):
+        for kid in kids:
+            if _same(kid.a, area.a, self.probe.tol * 2) and _same(kid.b, area.b, self.probe.tol * 2):
+                kid.escape = True  # the same contacts again: infinite loop escape
+            self.add(kid)
+        self.close(area, "split" if kids else "traced")
+
+    def process(self, area):
+        probe, eps = self.probe, self.eps
+        if area.dist < eps:
+            return self.close(area, "W2", "Dist(A,B) < eps")
+        G = None
+        if area.single:
+            G = _single_detection(probe, area)
+            if G is None:
+                return self.close(area, "W3", "single probe detection, Area(G) = 0")
+        reading, G = initial_pass(probe, area, G)
+        if reading is None:
+            return self.close(area, "W3", "Area(G) = 0")
+        c = reading.tip_contact.point
+        pose_c = Posture(reading.joint, reading.direction)
+        if _same(c, area.a, 2 * probe.tol) or _same(c, area.b, 2 * probe.tol):
+            return self.close(area, "W3", "Theorem 1 pass found no new contact")
+        joint_i = reading.joint.copy()
+        local = None if area.escape else bisection(probe, area, G, reading)
+        if local is None:
+            return self.escape(area, c, pose_c)
+        self.trace(area, G, joint_i, local)
+
+    def escape(self, area, c, pose_c):
+        """§4.4: split A_iB_i at the new contact found by the initial pass."""
+        self.probe.stats.escapes += 1
+        d = area.depth + 1
+        kids = [Area(area.a, c, area.pose_a, pose_c, area.index, "escape", d),
+                Area(c, area.b, pose_c, area.pose_b, area.index, "escape", d)]
+        self.children(area, kids)
+
+    def trace(self, area, G, joint_i, local):
+        probe = self.probe
+        sides, q = plan_sides(local)
+        pose_d = Posture(local.reading.joint, local.reading.direction)
+        kids = []
+        for k, toward_B in enumerate(sides):
+            if k and _reestablish(probe, pose_d).tip_contact is None:
+                kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
+                                     area.pose_a if not toward_B else area.pose_b,
+                                     not toward_B, area.index, "limit", area.depth + 1))
+                continue
+            lines, new, _ = trace_side(probe, area, G, joint_i, local, toward_B, self.budget)
+            self.result.w1.extend(lines)
+            kids.extend(new)
+        if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)
+            fin_is_A = sides[0]  # the side not traced
+            p_fin = area.a if fin_is_A else area.b
+            pose_fin = area.pose_a if fin_is_A else area.pose_b
+            d = area.depth + 1
+            if q is not None:
+                kids.append(register(local.point, pose_d, q.point, pose_d, fin_is_A,
+                                     area.index, "fig12c", d))
+                kids.append(register(q.point, pose_d, p_fin, pose_fin, fin_is_A,
+                                     area.index, "fig12c", d))
+            else:
+                kids.append(register(local.point, pose_d, p_fin, pose_fin, fin_is_A,
+                                     area.index, "one-sided", d))
+        self.children(area, kids)
+
+
+def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
+                max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
+    """Run the pulling-motion algorithm on one closed slice.
+
+    Parameters
+    ----------
+    contact : ContactModel -- the slice's ray-cast backend.
+    workspace : ((2,) float, float) -- centre and radius of a circle that
+        contains the slice (all the robot knows beforehand).
+    eps : float -- the paper's epsilon (W2 threshold, smoothness scale).
+    probe_length : float, optional -- default 2 x workspace diameter.
+    tol : float, optional -- contact resolution, default eps / 20.
+    max_motions, max_areas : int -- budgets; when hit, the areas still
+        unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
+
+    Returns
+    -------
+    SliceResult in the slice's 2D frame.
+    """
+    t0 = time.perf_counter()
+    probe = Probe(contact, workspace, eps, probe_length, tol)
+    budget = Budget(probe, max_motions, max_areas)
+    run = _Run(probe, eps, budget)
+    for area in bootstrap(probe, bootstrap_count):
+        run.add(area)
+    while run.queue:
+        if not budget():
+            break
+        run.process(run.queue.popleft())
+    for area in run.queue:
+        run.result.unknown.append(np.stack([area.a, area.b]))
+        run.close(area, "unknown")
+    stats = run.result.stats = probe.stats
+    stats.areas = len(run.result.areas)
+    stats.budget_hit = budget.hit
+    stats.seconds = time.perf_counter() - t0
+    return run.result

@@ -1,0 +1,311 @@
+"""Probe simulator (§3.2): owns the geometry, returns sensor readings only.
+
+A rigid probe of length L and negligible thickness hangs on a joint at
+``joint`` and points along the unit vector t; the tip is ``joint + L t``.
+Contacts come from a :class:`core2d.contact.ContactModel` through batched
+ray casts: a fan of rays from the joint for a swing, one ray from the tip for
+an insertion, rays along the probe for a translation. Contacts are resolved
+to ``tol`` by bisection with refining fans. No dynamics, no friction: the
+pulling strategy is what avoids pushing, and :attr:`stats.pushes` counts the
+trace steps that were executed in sliding contact with v.t > 0.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
+from core2d.result import SenseStats
+
+__all__ = ["Probe", "unit", "angle_of"]
+
+_WINDOWS = (8, 32, 128, 512, 2048, 8192)
+_REFINE = 16
+
+
+def unit(angle) -> np.ndarray:
+    """Unit vector(s) at ``angle`` (radians, counter-clockwise from +x)."""
+    a = np.asarray(angle, dtype=np.float64)
+    return np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+
+def angle_of(vec) -> float:
+    return float(np.arctan2(vec[1], vec[0]))
+
+
+class Probe:
+    """Simulated tactile probe on a robot joint.
+
+    Parameters
+    ----------
+    contact : ContactModel
+        Ray-cast backend (Embree or exact).
+    workspace : ((2,) float, float)
+        Centre and radius of a circle containing the whole slice: the only
+        prior knowledge of the robot.
+    eps : float
+        The paper's epsilon; fans are spaced eps/4 at the tip.
+    length : float, optional
+        Probe length L, default 2 x the workspace diameter so the joint
+        always stays in the free area F.
+    tol : float, optional
+        Contact resolution, default eps / 20.
+    """
+
+    def __init__(self, contact, workspace, eps, length=None, tol=None):
+        self.contact = contact
+        self.center = np.asarray(workspace[0], dtype=np.float64)
+        self.radius = float(workspace[1])
+        self.eps = float(eps)
+        self.length = float(length if length is not None else 4.0 * self.radius)
+        self.tol = float(tol if tol is not None else eps / 20.0)
+        self.fan_step = (self.eps / 4.0) / self.length  # angular fan spacing
+        self.ang_tol = (self.tol / 2.0) / self.length  # angular resolution
+        # contacts closer than eps/2 are one contact at the paper's resolution
+        # (§3.2: the contour is smooth at the eps level); near the tip they
+        # are the tip's contact (a probe lying at a grazing angle).
+        self.tip_zone = self.eps / 2.0
+        self.stats = SenseStats()
+        self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
+        self.theta = -np.pi / 2
+
+    # ------------------------------------------------------------------ state
+    @property
+    def direction(self) -> np.ndarray:
+        return unit(self.theta)
+
+    @property
+    def tip(self) -> np.ndarray:
+        return self.joint + self.length * self.direction
+
+    def _cast(self, origins, dirs, max_dist):
+        t0 = time.perf_counter()
+        d, p, _ = self.contact.cast(origins, dirs, max_dist)
+        self.stats.cast_seconds += time.perf_counter() - t0
+        self.stats.casts += 1
+        self.stats.rays += len(origins)
+        return d, p
+
+    def _fan(self, joint, angles):
+        """Rays from ``joint`` at ``angles`` over the probe length."""
+        angles = np.asarray(angles, dtype=np.float64)
+        origins = np.broadcast_to(joint, (len(angles), 2))
+        return self._cast(origins, unit(angles), self.length)
+
+    # --------------------------------------------------------------- sensing
+    def sense(self, event="done", **extra) -> Reading:
+        """Read the tactile skin and the torque sensor at the current pose."""
+        alpha = self.tol / self.length
+        t = self.direction
+        origins = np.stack([self.joint, self.joint, self.tip])
+        dirs = np.stack([unit(self.theta + alpha), unit(self.theta - alpha), t])
+        d, p = self._cast(origins, dirs, np.array([self.length, self.length, self.tol]))
+        contacts = []
+        if np.isfinite(d[2]):
+            contacts.append(Contact(p[2], TIP, self.length))
+        for k, face in ((0, RIGHT), (1, LEFT)):
+            if np.isfinite(d[k]):
+                f = TIP if self.length - d[k] <= self.tip_zone else face
+                if not any(np.linalg.norm(c.point - p[k]) <= self.tip_zone for c in contacts):
+                    contacts.append(Contact(p[k], f, float(d[k])))
+        primary = extra.pop("primary", None)
+        if primary is not None:
+            contacts = [primary] + [
+                c for c in contacts if np.linalg.norm(c.point - primary.point) > self.tip_zone
+            ]
+        return Reading(
+            joint=self.joint.copy(),
+            direction=t,
+            contacts=tuple(contacts),
+            blocked_ccw=bool(np.isfinite(d[0])),
+            blocked_cw=bool(np.isfinite(d[1])),
+            event=event,
+            **extra,
+        )
+
+    def _contact_at(self, dist, point, rot_dir) -> Contact:
+        """Contact found by a ray from the joint blocking rotation ``rot_dir``."""
+        if self.length - dist <= self.tip_zone:
+            return Contact(point, TIP, float(dist))
+        return Contact(point, RIGHT if rot_dir > 0 else LEFT, float(dist))
+
+    def _offsets(self, max_angle):
+        """Angular offsets of a search: fine first (2 ang_tol), growing 4x per
+        window of 8 rays up to the eps/4 fan spacing, then constant."""
+        out, pos, step = [], 0.0, min(self.fan_step, 2 * self.ang_tol)
+        while step < self.fan_step and pos < max_angle:
+            ks = pos + step * np.arange(1, 9)
+            out.append(ks)
+            pos, step = ks[-1], min(self.fan_step, 4 * step)
+        for size in _WINDOWS:
+            if pos >= max_angle:
+                break
+            ks = pos + self.fan_step * np.arange(1, size + 1)
+            out.append(ks)
+            pos = ks[-1]
+        if pos < max_angle:
+            out.append(np.arange(pos + self.fan_step, max_angle + self.fan_step, self.fan_step))
+        return [np.minimum(w, max_angle) for w in out]
+
+    def _search(self, joint, theta0, rot_dir, max_angle, want_blocked=True):
+        """First angle from ``theta0`` (excluded) towards ``rot_dir`` where the
+        probe on ``joint`` becomes blocked (or free), resolved to ang_tol.
+
+        Returns ``(free_angle, (dist, point))`` -- the free side of the
+        bracket and the hit of its blocked side -- or None when nothing
+        changes within ``max_angle``.
+        """
+        prev = 0.0
+        for offs in self._offsets(max_angle):
+            ang = theta0 + rot_dir * offs
+            d, p = self._fan(joint, ang)
+            hit = np.isfinite(d) if want_blocked else ~np.isfinite(d)
+            if hit.any():
+                i = int(np.argmax(hit))
+                lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
+                return self._refine(joint, lo, ang[i], (d[i], p[i]), want_blocked)
+            prev = offs[-1]
+        return None
+
+    def _refine(self, joint, a_before, a_after, hit_after, want_blocked):
+        """Shrink the bracket [a_before, a_after] where the state changes."""
+        blocked_hit = hit_after if want_blocked else None
+        last_blocked = hit_after if want_blocked else None
+        while abs(a_after - a_before) > self.ang_tol:
+            ang = np.linspace(a_before, a_after, _REFINE + 2)[1:-1]
+            d, p = self._fan(joint, ang)
+            hit = np.isfinite(d) if want_blocked else ~np.isfinite(d)
+            if hit.any():
+                i = int(np.argmax(hit))
+                a_after = ang[i]
+                a_before = ang[i - 1] if i > 0 else a_before
+                if want_blocked:
+                    last_blocked = (d[i], p[i])
+                elif i > 0:
+                    last_blocked = (d[i - 1], p[i - 1])
+            else:
+                a_before = ang[-1]
+                if not want_blocked:
+                    last_blocked = (d[-1], p[-1])
+        if want_blocked:
+            return a_before, last_blocked or blocked_hit
+        if last_blocked is None:  # blocked side is the start angle itself
+            d, p = self._fan(joint, [a_before])
+            last_blocked = (d[0], p[0])
+        return a_after, last_blocked
+
+    # --------------------------------------------------------------- motions
+    def _motion(self):
+        self.stats.motions += 1
+
+    def approach(self, point, direction) -> Reading:
+        """Move through F to the line through ``point`` along ``direction``,
+        tip retracted to the workspace circle (a free transfer motion)."""
+        self._motion()
+        t = np.asarray(direction, float) / np.linalg.norm(direction)
+        w = np.asarray(point, float) - self.center
+        b = w @ t
+        disc = b * b - (w @ w - self.radius**2)
+        s = -b - np.sqrt(disc) if disc > 0 else -b  # circle entry along the line
+        tip = np.asarray(point, float) + (s - self.tol) * t
+        joint = tip - self.length * t
+        self.stats.joint_path += float(np.linalg.norm(joint - self.joint))
+        self.joint, self.theta = joint, angle_of(t)
+        return self.sense()
+
+    def insert(self, max_dist=None) -> Reading:
+        """Insert along t until the tip touches (or ``max_dist``)."""
+        self._motion()
+        max_dist = 2.5 * self.radius if max_dist is None else float(max_dist)
+        d, p = self._cast(self.tip[None], self.direction[None], max_dist)
+        move = max_dist if not np.isfinite(d[0]) else max(0.0, d[0] - self.tol / 2)
+        self.joint = self.joint + move * self.direction
+        self.stats.joint_path += move
+        if np.isfinite(d[0]):
+            return self.sense("contact", primary=Contact(p[0], TIP, self.length))
+        return self.sense("done")
+
+    def swing(self, rot_dir, max_angle) -> Reading:
+        """Rotate about the joint (``rot_dir`` +1 ccw, -1 cw) until contact
+        or ``max_angle``."""
+        self._motion()
+        found = self._search(self.joint, self.theta, rot_dir, max_angle)
+        if found is None:
+            self.theta += rot_dir * max_angle
+            return self.sense("done", angle=rot_dir * max_angle)
+        free, (d, p) = found
+        angle = free - self.theta
+        self.theta = free
+        return self.sense("contact", primary=self._contact_at(d, p, rot_dir), angle=angle)
+
+    def turn_to(self, theta) -> Reading:
+        """Swing to absolute angle ``theta`` (stops early at a contact)."""
+        delta = (theta - self.theta + np.pi) % (2 * np.pi) - np.pi
+        return self.swing(1 if delta >= 0 else -1, abs(delta))
+
+    def pivot(self, rot_dir, max_angle) -> Reading:
+        """Rotate about the tip (Definition 1, single probe detection): the
+        probe line sweeps around the fixed tip until it touches."""
+        self._motion()
+        tip = self.tip
+        back = self.theta + np.pi
+        found = self._search_from(tip, back, rot_dir, max_angle)
+        new_back = back + rot_dir * (max_angle if found is None else found[0])
+        joint = tip + self.length * unit(new_back)
+        self.stats.joint_path += self.length * abs(new_back - back)
+        self.joint, self.theta = joint, new_back - np.pi
+        return self.sense("done" if found is None else "contact", angle=new_back - back)
+
+    def _search_from(self, origin, theta0, rot_dir, max_angle):
+        """Like :meth:`_search` for rays from ``origin`` (offset by tol)."""
+        step = self.fan_step
+        n = max(1, int(np.ceil(max_angle / step)))
+        ang = theta0 + rot_dir * np.minimum(np.arange(1, n + 1) * step, max_angle)
+        dirs = unit(ang)
+        d, _ = self._cast(origin + self.tol * dirs, dirs, self.length)
+        if not np.isfinite(d).any():
+            return None
+        i = int(np.argmax(np.isfinite(d)))
+        return (i * step,)
+
+    def translate(self, v, dist, samples=None) -> Reading:
+        """Translate the joint along unit ``v`` by up to ``dist`` keeping t.
+
+        Parallel rays from samples along the probe (spacing eps/4 inside the
+        workspace) find the first obstacle; the probe stops tol/2 short."""
+        self._motion()
+        v = np.asarray(v, float) / np.linalg.norm(v)
+        along = self._samples_along()
+        pts = self.joint + along[:, None] * self.direction
+        d, p = self._cast(pts, np.broadcast_to(v, pts.shape), dist)
+        if not np.isfinite(d).any():
+            self.joint = self.joint + dist * v
+            self.stats.joint_path += dist
+            return self.sense("done")
+        i = int(np.argmin(d))
+        move = max(0.0, d[i] - self.tol / 2)
+        self.joint = self.joint + move * v
+        self.stats.joint_path += move
+        face = TIP if i == len(along) - 1 else (
+            LEFT if self.direction[0] * v[1] - self.direction[1] * v[0] < 0 else RIGHT)
+        return self.sense("blocked", primary=Contact(p[i], face, float(along[i])))
+
+    def _samples_along(self) -> np.ndarray:
+        """Distances along the probe that lie inside the workspace circle."""
+        t = self.direction
+        w = self.joint - self.center
+        b = w @ t
+        disc = b * b - (w @ w - self.radius**2)
+        if disc <= 0:
+            return np.array([self.length])
+        lo = max(0.0, -b - np.sqrt(disc))
+        hi = min(self.length, -b + np.sqrt(disc))
+        n = max(2, int(np.ceil((hi - lo) / (self.eps / 4))) + 1)
+        return np.concatenate([np.linspace(lo, hi, n), [self.length]])
+
+    def trace(self, v, tau, max_dist, **kw) -> Reading:
+        """Compliant tracing step sequence; see :func:`core2d.compliance.compliant_trace`."""
+        from core2d.compliance import compliant_trace
+
+        return compliant_trace(self, v, tau, max_dist, **kw)

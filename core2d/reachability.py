@@ -1,0 +1,332 @@
+"""Exact reachable set of a closed 2D contour for a rod coming from outside.
+
+DESIGN.md "The 2D problem on a closed cross-section": a contour point ``p``
+is *reachable* when some ray from ``p`` to infinity, in the plane, crosses no
+contour edge. A probe of length >= 2 x the slice diameter then has its joint
+in the free area F (outside the convex hull), so this is exactly the set a
+rigid rod from F can touch with its tip.
+
+The test is done with angular intervals, not sampled directions: seen from
+``p`` every edge not containing ``p`` blocks the *closed* arc of directions it
+subtends (an edge always subtends less than pi). At a point interior to an
+edge only the open half-plane of directions on the edge's outward side can be
+free, so the arcs are clipped to that half-plane, which also removes the
++-pi branch cut (the cut lies in the blocked material half-plane). At a
+vertex the whole circle is used and arcs crossing the cut are split in two.
+``p`` is reachable iff the union of blocked arcs leaves an open gap wider
+than ``angle_tol`` (default 1e-9 rad): touching counts as blocking, so a ray
+that only grazes a vertex, and any measure-zero set of free directions, is
+treated as blocked.
+
+Conventions: ``loops`` is a list of (k, 2) arrays, closed implicitly, outer
+loops counter-clockwise and holes clockwise (shapely), so the material is on
+the *left* of every edge. Edges are numbered globally: edge ``offset[l] + i``
+of loop ``l`` runs from vertex ``i`` to vertex ``i + 1``.
+
+Examples
+--------
+>>> sq = [np.array([[0., 0.], [1., 0.], [1., 1.], [0., 1.]])]
+>>> samples, ok = reachable_samples(sq, 0.25)
+>>> bool(ok.all()), samples.points.shape
+(True, (16, 2))
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+__all__ = [
+    "ContourSamples",
+    "as_loops",
+    "contour_edges",
+    "loop_is_hole",
+    "subdivide",
+    "sample_contour",
+    "free_angle",
+    "reachable",
+    "reachable_samples",
+]
+
+#: pairs (points x edges) per chunk; ~15 float64 temporaries of this size
+_CHUNK = 500_000
+#: points per chunk; keeps the row offsets of the segmented sort small (exact to ~1e-11 rad)
+_MAX_ROWS = 4096
+
+
+@dataclass(frozen=True, eq=False)
+class ContourSamples:
+    """Midpoints of sub-segments of a contour, each no longer than ``spacing``.
+
+    points : (m, 2) float -- sample points (sub-segment midpoints).
+    lengths : (m,) float -- length of contour each sample stands for.
+    loop : (m,) int -- loop index.
+    edge : (m,) int -- global edge index (see :func:`contour_edges`).
+    s : (m,) float -- arc length of the sample along its loop, measured from
+        vertex 0 in stored vertex order (CCW for outer loops, CW for holes).
+    is_hole : (m,) bool -- sample lies on a hole (clockwise) loop.
+    loop_lengths : (L,) float -- perimeter of every loop.
+    """
+
+    points: np.ndarray
+    lengths: np.ndarray
+    loop: np.ndarray
+    edge: np.ndarray
+    s: np.ndarray
+    is_hole: np.ndarray
+    loop_lengths: np.ndarray
+
+
+def as_loops(loops) -> list[np.ndarray]:
+    """Loops as float64 (k, 2) arrays; a repeated closing vertex is dropped."""
+    out = []
+    for lp in loops:
+        lp = np.asarray(lp, dtype=np.float64).reshape(-1, 2)
+        if len(lp) > 3 and np.array_equal(lp[0], lp[-1]):
+            lp = lp[:-1]
+        out.append(lp)
+    return out
+
+
+def contour_edges(loops) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """All edges of all loops.
+
+    Returns
+    -------
+    a, b : (n, 2) float -- edge start and end points.
+    loop : (n,) int -- loop index of every edge.
+    """
+    loops = as_loops(loops)
+    if not loops:
+        z = np.zeros((0, 2))
+        return z, z.copy(), np.zeros(0, dtype=np.int64)
+    a = np.concatenate(loops)
+    b = np.concatenate([np.roll(lp, -1, axis=0) for lp in loops])
+    loop = np.repeat(np.arange(len(loops)), [len(lp) for lp in loops])
+    return a, b, loop
+
+
+def loop_is_hole(loops) -> np.ndarray:
+    """(L,) bool: the loop is clockwise (negative shoelace area), i.e. a hole."""
+    out = []
+    for lp in as_loops(loops):
+        x, y = lp[:, 0], lp[:, 1]
+        out.append(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)) < 0)
+    return np.array(out, dtype=bool)
+
+
+def subdivide(a, b, spacing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split segments ``a[i] -> b[i]`` into equal pieces no longer than ``spacing``.
+
+    Zero-length segments give no piece.
+
+    Returns
+    -------
+    seg : (m,) int -- segment index of every piece.
+    frac : (m,) float -- position of the piece midpoint along its segment, in (0, 1).
+    lengths : (m,) float -- piece lengths.
+    """
+    if spacing <= 0:
+        raise ValueError("spacing must be positive")
+    a = np.asarray(a, dtype=np.float64).reshape(-1, 2)
+    b = np.asarray(b, dtype=np.float64).reshape(-1, 2)
+    elen = np.hypot(*(b - a).T)
+    k = np.where(elen > 0, np.maximum(np.ceil(elen / spacing), 1), 0).astype(np.int64)
+    seg = np.repeat(np.arange(len(a)), k)
+    first = np.cumsum(k) - k
+    j = np.arange(len(seg)) - first[seg]
+    frac = (j + 0.5) / k[seg]
+    return seg, frac, elen[seg] / k[seg]
+
+
+def sample_contour(loops, spacing: float) -> ContourSamples:
+    """Sample every loop at sub-segment midpoints, pieces no longer than ``spacing``."""
+    loops = as_loops(loops)
+    a, b, loop = contour_edges(loops)
+    elen = np.hypot(*(b - a).T)
+    seg, frac, lengths = subdivide(a, b, spacing)
+    loop_lengths = np.bincount(loop, weights=elen, minlength=len(loops))
+    before = np.cumsum(elen) - elen  # global arc length at edge start
+    loop_start = np.concatenate([[0.0], np.cumsum(loop_lengths)[:-1]]) if len(loops) else np.zeros(0)
+    edge_s = before - loop_start[loop]
+    return ContourSamples(
+        points=a[seg] + frac[:, None] * (b - a)[seg],
+        lengths=lengths,
+        loop=loop[seg],
+        edge=seg,
+        s=edge_s[seg] + frac * elen[seg],
+        is_hole=loop_is_hole(loops)[loop[seg]],
+        loop_lengths=loop_lengths,
+    )
+
+
+def _segmented_gap(row, st, en, nrows, width):
+    """Widest open gap of [0, width] per row left by closed arcs ``[st, en]`` of ``row``."""
+    out = np.full(nrows, width)
+    if len(row) == 0:
+        return out
+    order = np.argsort(row * (4.0 * width) + st, kind="stable")  # by row, then start
+    row, s, e = row[order], st[order], en[order]
+    first = np.r_[True, row[1:] != row[:-1]]
+    # running max of ends, restarted at each row (ends of a row are >= row offset)
+    e_run = np.maximum.accumulate(e + row * (4.0 * width)) - row * (4.0 * width)
+    prev = np.r_[0.0, e_run[:-1]]
+    gap = np.where(first, s, s - prev)
+    last = np.r_[first[1:], True]  # last arc of its row
+    starts = np.flatnonzero(first)
+    inner = np.maximum.reduceat(gap, starts)
+    trail = width - e_run[last]
+    out[row[starts]] = np.maximum(inner, trail)
+    return np.clip(out, 0.0, width)
+
+
+def _free_chunk(p, own, a, b, atol):
+    """Widest free angle for points ``p`` (c, 2) on edges ``own`` (c,)."""
+    c = len(p)
+    # does p sit strictly inside its own edge (not at a vertex)?
+    ea, eb = a[own], b[own]
+    ulen = np.hypot(*(eb - ea).T)
+    inner = (np.hypot(*(p - ea).T) > atol) & (np.hypot(*(p - eb).T) > atol) & (ulen > 0)
+    safe = np.where(ulen > 0, ulen, 1.0)
+    tx = np.where(inner, (eb - ea)[:, 0] / safe, 1.0)
+    ty = np.where(inner, (eb - ea)[:, 1] / safe, 0.0)
+    # cross(t, v) >= 0 at both ends (v = end - p): the edge lies in the closed
+    # material half-plane (material is on the left) and cannot block an
+    # outward ray. Culled densely, the rest is done on the kept pairs only.
+    k = (tx * p[:, 1] - ty * p[:, 0])[:, None]
+    ca = np.outer(tx, a[:, 1]) - np.outer(ty, a[:, 0]) - k
+    cb = np.outer(tx, b[:, 1]) - np.outer(ty, b[:, 0]) - k
+    keep = (ca < 0) | (cb < 0)
+    keep[~inner] = True
+    keep[np.arange(c), own] = False
+    row, col = np.nonzero(keep)
+    del keep, k, ca, cb
+    # edges containing p (distance <= atol) block nothing
+    pr = p[row]
+    va, vb = a[col] - pr, b[col] - pr
+    e = vb - va
+    l2 = np.einsum("ij,ij->i", e, e)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.nan_to_num(np.clip(-np.einsum("ij,ij->i", va, e) / l2, 0.0, 1.0))
+    far = np.hypot(*(va + t[:, None] * e).T) > atol
+    row, va, vb = row[far], va[far], vb[far]
+    txr, tyr = tx[row], ty[row]
+    # psi: angle measured clockwise from the edge direction t; the outward
+    # side of the edge is psi in (0, pi), the material side [-pi, 0]
+    psa = -np.arctan2(txr * va[:, 1] - tyr * va[:, 0], txr * va[:, 0] + tyr * va[:, 1])
+    psb = -np.arctan2(txr * vb[:, 1] - tyr * vb[:, 0], txr * vb[:, 0] + tyr * vb[:, 1])
+    lo = np.minimum(psa, psb)
+    hi = np.maximum(psa, psb)
+    wrap = hi - lo > np.pi  # the short arc crosses the +-pi cut
+    out = np.empty(c)
+    rin = inner[row]
+    # inner points: clip arcs to the outward half-plane [0, pi]
+    st = np.where(wrap, np.maximum(hi, 0.0), np.maximum(lo, 0.0))
+    en = np.where(wrap, np.pi, hi)
+    m = rin & (en > st)
+    out[inner] = _segmented_gap(np.cumsum(inner)[row[m]] - 1, st[m], en[m], int(inner.sum()), np.pi)
+    if (~inner).any():  # points at vertices: the whole circle, arcs split at the cut
+        vidx = np.cumsum(~inner) - 1
+        m = ~rin
+        r1 = vidx[row[m]]
+        st1 = np.where(wrap[m], hi[m], lo[m]) + np.pi
+        en1 = np.where(wrap[m], np.pi, hi[m]) + np.pi
+        w = m.copy()
+        w[m] = wrap[m]
+        r2 = vidx[row[w]]
+        st2 = np.zeros(int(w.sum()))
+        en2 = lo[w] + np.pi
+        nv = int((~inner).sum())
+        rr, ss, ee = np.r_[r1, r2], np.r_[st1, st2], np.r_[en1, en2]
+        gap = _segmented_gap(rr, ss, ee, nv, 2 * np.pi)
+        # join the gaps at both ends of [0, 2 pi]
+        lead = np.full(nv, 2 * np.pi)
+        trail = np.full(nv, 2 * np.pi)
+        if len(rr):
+            np.minimum.at(lead, rr, ss)
+            emax = np.zeros(nv)
+            np.maximum.at(emax, rr, ee)
+            trail = np.where(np.bincount(rr, minlength=nv) > 0, 2 * np.pi - emax, 2 * np.pi)
+        out[~inner] = np.clip(np.maximum(gap, lead + trail), 0.0, 2 * np.pi)
+    return out
+
+
+def _locate(a, b, points):
+    """(m,) index of the edge nearest to each point."""
+    tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+    idx = tree.query_nearest(shapely.points(points), all_matches=False)
+    out = np.empty(len(points), dtype=np.int64)
+    out[idx[0]] = idx[1]
+    return out
+
+
+def free_angle(loops, points, edge_ids=None, chunk: int = _CHUNK) -> np.ndarray:
+    """Widest open interval of free ray directions at each contour point.
+
+    Parameters
+    ----------
+    loops : list of (k, 2) float -- the contour (see module conventions).
+    points : (m, 2) float -- points on the contour.
+    edge_ids : (m,) int, optional -- global edge each point lies on (nearest
+        edge when omitted).
+    chunk : int -- points x edges pairs handled at once (memory bound).
+
+    Returns
+    -------
+    (m,) float -- angle in radians, in [0, pi] for points inside an edge and
+    in [0, 2 pi] at vertices; 0 where every direction is blocked.
+    """
+    a, b, _ = contour_edges(loops)
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if len(points) == 0 or len(a) == 0:
+        return np.zeros(len(points))
+    edge_ids = _locate(a, b, points) if edge_ids is None else np.asarray(edge_ids, dtype=np.int64)
+    atol = 1e-9 * max(float(np.ptp(a, axis=0).max()), 1e-300)
+    step = max(1, min(_MAX_ROWS, chunk // len(a)))
+    out = np.empty(len(points))
+    for i in range(0, len(points), step):
+        sl = slice(i, i + step)
+        out[sl] = _free_chunk(points[sl], edge_ids[sl], a, b, atol)
+    return out
+
+
+def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int = _CHUNK) -> np.ndarray:
+    """(m,) bool: some ray from the point to infinity crosses no contour edge.
+
+    Points on the convex hull boundary are accepted without the full test
+    (the outward normal of a supporting line is free). Elsewhere this is
+    ``free_angle(...) > angle_tol``: grazing rays and measure-zero gaps are
+    blocked. Hole loops come out unreachable because every ray from them
+    must cross their outer loop.
+
+    Examples
+    --------
+    >>> sq = [np.array([[0., 0.], [2., 0.], [2., 2.], [0., 2.]])]
+    >>> reachable(sq, [[1.0, 0.0]], [0]).tolist()
+    [True]
+    """
+    a, b, _ = contour_edges(loops)
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if len(points) == 0 or len(a) == 0:
+        return np.zeros(len(points), dtype=bool)
+    edge_ids = _locate(a, b, points) if edge_ids is None else np.asarray(edge_ids, dtype=np.int64)
+    atol = 1e-9 * max(float(np.ptp(a, axis=0).max()), 1e-300)
+    hull = shapely.convex_hull(shapely.multipoints(a)).boundary
+    ok = shapely.distance(shapely.points(points), hull) <= atol
+    todo = np.flatnonzero(~ok)
+    if len(todo):
+        ok[todo] = free_angle(loops, points[todo], edge_ids[todo], chunk) > angle_tol
+    return ok
+
+
+def reachable_samples(loops, spacing: float, **kwargs) -> tuple[ContourSamples, np.ndarray]:
+    """Sample the contour (:func:`sample_contour`) and test every sample.
+
+    Returns
+    -------
+    samples : ContourSamples
+    ok : (m,) bool -- reachable samples.
+    """
+    samples = sample_contour(loops, spacing)
+    return samples, reachable(loops, samples.points, samples.edge, **kwargs)

@@ -1,0 +1,109 @@
+"""Tracing motion planning (§4.3) from the local concave point D_i.
+
+Theorem 4 picks the joint direction v_i in K (Definition 6) from the final
+state (Y1, Y2, Face) of the bisection, with tau = tau0 sgn(v_i, t*):
+
+(A) (1, 0): K1 -- both sides, K1 cap K2 then K1 cap not-K2;
+(B) (1, -1): K1 cap K2;  (C) (1, 1): K1 cap not-K2;
+(D) (2, 0) with Face(left): K1 cap K2;  (E) (2, 0) with Face(right): K1 cap not-K2.
+
+P_fin (Definition 8) is A_i for sgn(v_i, t*) > 0 and B_i otherwise. The
+events of §4.3.2 end a trace: Case 1 (reached P_fin), Case 2-1 / 2-2 / 2-3
+(contact point jump onto Int, onto Ext, or into F), Case 3 (v.t > 0) and
+Case 4 (joint blocked). Non-traced parts are registered by the rule of §4.3.3.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from core2d.areas import register
+from core2d.readings import LEFT, RIGHT, TIP
+from core2d.regions import Posture, T_contains, contains, in_V, trace_direction
+
+__all__ = ["plan_sides", "trace_side"]
+
+
+def plan_sides(local):
+    """Theorem 4: which sides to trace from D_i.
+
+    Returns ``(sides, other)``: the list of ``toward_B`` flags to execute and,
+    for one-sided cases, the contact Q of Fig. 12(c) (or None).
+    """
+    Y1, Y2, r = local.Y1, local.Y2, local.reading
+    if Y1 == 1:
+        if Y2 == 0:
+            return [True, False], None  # (A)
+        return ([True] if Y2 == -1 else [False]), None  # (B) / (C)
+    left, right = r.contact(LEFT), r.contact(RIGHT)
+    if left is not None:
+        return [True], left  # (D)
+    if right is not None:
+        return [False], right  # (E)
+    return [True, False], None
+
+
+def _is_internal(p2, area, G, joint_i):
+    """Case 2-1 test: P_2nd in G_i cup (T_i cap not-V_i) (Fig. 13)."""
+    if contains(G, p2):
+        return True
+    return T_contains(joint_i, area.a, area.b, p2) and not in_V(p2, area.a, area.b)
+
+
+def trace_side(probe, area, G, joint_i, local, toward_B, budget):
+    """Trace one side from D_i; returns (w1 polylines, new areas, cases).
+
+    Parameters
+    ----------
+    probe : Probe -- its tip is at D_i with direction t*.
+    area : Area -- A_iB_i being processed.
+    G : shapely geometry -- G_i.
+    joint_i : (2,) float -- P_i, the joint of the initial pass (T_i).
+    local : LocalResult -- final bisection state at D_i.
+    toward_B : bool -- side to trace.
+    budget : callable -> bool -- True while motions remain.
+    """
+    t_star = local.reading.direction
+    v, tau = trace_direction(t_star, toward_B)
+    fin_is_A = not toward_B  # Definition 8
+    p_fin = area.a if fin_is_A else area.b
+    pose_fin = area.pose_a if fin_is_A else area.pose_b
+    polylines, new, cases = [], [], []
+    depth = area.depth + 1
+    pieces = [local.point[None]]
+    while budget():
+        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin)
+        if len(r.trace):
+            pieces.append(r.trace)
+        p1 = pieces[-1][-1]
+        pose1 = Posture(r.before_joint, r.before_direction)
+        if r.event == "reached":
+            cases.append("case1")
+            pieces.append(np.asarray(p_fin)[None])
+            break
+        if r.event == "jump":
+            p2 = r.contacts[0].point
+            pose2 = Posture(r.joint, r.direction)
+            if _is_internal(p2, area, G, joint_i):
+                cases.append("case2-1")
+                new.append(register(p1, pose1, p2, pose2, fin_is_A, area.index,
+                                    "case2-1", depth))
+                if r.contacts[0].face == TIP:
+                    polylines.append(np.concatenate(pieces))
+                    pieces = [p2[None]]
+                    continue  # tracing continues for the remaining area
+                new.append(register(p2, pose2, p_fin, pose_fin, fin_is_A, area.index,
+                                    "case2-1", depth))
+                break
+            cases.append("case2-2")
+            new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index,
+                                "case2-2", depth))
+            break
+        rule = {"lost": "case2-3", "pushing": "case3", "blocked": "case4"}.get(r.event, "limit")
+        cases.append(rule)
+        tip = r.tip_contact
+        if rule in ("case3", "case4") and tip is not None:
+            p1, pose1 = tip.point, Posture(r.joint, r.direction)  # P_1st replaced
+        new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index, rule, depth))
+        break
+    polylines.append(np.concatenate(pieces))
+    return [p for p in polylines if len(p) >= 2], new, cases

@@ -7,7 +7,7 @@ import numpy as np
 
 from core2d.regions import Posture
 
-__all__ = ["Area", "register"]
+__all__ = ["Area", "register", "pivot_G"]
 
 
 @dataclass
@@ -20,6 +20,9 @@ class Area:
     parent : int -- index of the area whose processing registered it.
     rule : str -- which rule created it (see AreaRecord).
     depth : int -- recursion depth.
+    G, zero_G -- for a single probe detection, G_i is generated when the
+        area is found by rotating the probe about its tip (Definition 1);
+        ``zero_G`` records Area(G_i) = 0.
     """
 
     a: np.ndarray
@@ -31,6 +34,8 @@ class Area:
     depth: int = 0
     index: int = -1
     escape: bool = False
+    G: object = None  # G_i made at detection time (single probe detection)
+    zero_G: bool = False  # Area(G_i) = 0 verified at detection time
     notes: list = field(default_factory=list)
 
     @property
@@ -55,3 +60,21 @@ def register(p_first, pose_first, p_end, pose_end, fin_is_A: bool, parent, rule,
                     pose_first, parent, rule, depth)
     return Area(np.asarray(p_first, float), np.asarray(p_end, float), pose_first,
                 pose_end, parent, rule, depth)
+
+
+def pivot_G(probe, body_face, max_angle=np.pi / 4):
+    """Definition 1 / Fig. 6(a): rotate the probe about its tip, away from
+    the body contact on ``body_face``, until it touches; return G_i (the
+    swept triangle, shapely Polygon) or None when Area(G_i) = 0 (Fig. 6(b)).
+    The probe is rotated back afterwards, so its posture is unchanged."""
+    from shapely.geometry import Polygon
+
+    tip, joint = probe.tip.copy(), probe.joint.copy()
+    rot = -1 if body_face == "left" else 1
+    r = probe.pivot(rot, max_angle)
+    angle = r.angle
+    if abs(angle) > 0:
+        probe.pivot(-rot, abs(angle))  # back along the swept, free path
+    if abs(angle) <= 4 * probe.ang_tol:
+        return None
+    return Polygon([tip, joint, r.joint])

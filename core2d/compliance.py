@@ -10,7 +10,10 @@ halved until either the motion is continuous again or the step is below
 ``tol``: then it is a real contact point jump (Case 2) and the motion stops.
 The controller also stops when the probe loses every contact (Case 2-3),
 when v.t > 0 is detected (Case 3, if guarded), when the joint cannot move
-along v (Case 4), or when a part of the probe reaches ``stop_at`` (P_fin).
+along v (Case 4), or when a part of the probe reaches ``stop_at`` (P_fin): event
+``"reached"`` when the tip's path passed it, ``"reached-body"`` otherwise;
+and when the tip passes ``leave_at``, the other end of the designated area
+(``"left"``: Definition 8's P_fin lay the other way).
 """
 from __future__ import annotations
 
@@ -51,7 +54,7 @@ def _segment_distance(point, a, b) -> float:
 
 
 def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
-                    guard_push=True, max_steps=20000):
+                    guard_push=True, max_steps=20000, leave_at=None):
     """Trace with the tip from the current contact; see the module doc.
 
     Parameters
@@ -63,6 +66,8 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     delta : float -- nominal joint step, default eps / 4.
     stop_at : (2,) float, optional -- P_fin; stop when the probe reaches it.
     guard_push : bool -- stop as soon as v.t > 0 (Case 3).
+    leave_at : (2,) float, optional -- the other end of the designated area;
+        the tip passing it means the trace left the area (event ``"left"``).
 
     Returns
     -------
@@ -85,7 +90,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         t = probe.direction
         if stop_at is not None and _segment_distance(
                 np.asarray(stop_at, float), probe.joint, probe.tip) <= 2 * probe.tol:
-            event = "reached"
+            event = "reached-body"  # a part of the probe other than the tip
             break
         if v @ t > 0:
             if guard_push:
@@ -119,9 +124,17 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             event, primary = "jump", contact
             break
         if stop_at is not None and last is not None and _segment_distance(
-                np.asarray(stop_at, float), last.point, contact.point) <= 2 * probe.tol:
+                np.asarray(stop_at, float), last.point, contact.point) <= probe.tip_zone:
+            # within eps/2 of the tip's path: reached at the paper's resolution
+            # (a chord cuts a convex corner, so 2 tol would miss P_fin there)
             trace.append(np.asarray(stop_at, float))
             event = "reached"  # the tip passed P_fin during this step
+            break
+        if leave_at is not None and last is not None and np.linalg.norm(
+                trace[0] - leave_at) > probe.tip_zone and _segment_distance(
+                np.asarray(leave_at, float), last.point, contact.point) <= probe.tip_zone:
+            trace.append(np.asarray(leave_at, float))
+            event = "left"  # the tip passed the other end of the area
             break
         last = contact
         trace.append(contact.point)

@@ -63,7 +63,7 @@ def initial_pass(probe, area, G=None):
         return None, G
     aim = common_point(area.a, area.b, area.pose_a, area.pose_b)
     if aim is None or GV.geom_type == "Polygon":
-        aim = (area.a + area.b) / 2
+        aim = (area.a + area.b) / 2  # convex G_i cap V_i: centre of L_{A_i}^{B_i}
     t = aim - start
     if np.linalg.norm(t) < probe.tol:
         return None, G

@@ -21,16 +21,15 @@ import time
 from collections import deque
 
 import numpy as np
-from shapely.geometry import Polygon
 
-from core2d.areas import Area, register
+from core2d.areas import Area, pivot_G, register
 from core2d.bootstrap import bootstrap
 from core2d.local_search import bisection, initial_pass
 from core2d.probe import Probe
-from core2d.readings import LEFT
+from core2d.readings import LEFT, RIGHT
 from core2d.regions import Posture
 from core2d.result import AreaRecord, SliceResult
-from core2d.tracing import plan_sides, trace_side
+from core2d.tracing import attach_pivot_G, plan_sides, trace_side
 
 __all__ = ["sense_slice", "Budget"]
 
@@ -59,21 +58,38 @@ def _reestablish(probe, pose):
     return probe.insert(2.5 * probe.radius)
 
 
-def _single_detection(probe, area):
-    """Definition 1, Fig. 6(a): A_i and B_i found by one posture. Rotate the
-    probe about the tip, away from the body contact, until it touches; G_i is
-    the triangle swept. Returns G_i, or None when Area(G_i) = 0 (Fig. 6(b))."""
-    pose = area.pose_a
-    r = _reestablish(probe, pose)
-    if r.tip_contact is None:
+def _near_segment(point, pose, probe) -> bool:
+    """Is ``point`` on the probe segment of ``pose`` (within eps/2)?"""
+    w = np.asarray(point) - pose.joint
+    s = float(np.clip(w @ pose.direction, 0.0, probe.length))
+    return float(np.linalg.norm(w - s * pose.direction)) <= probe.tip_zone
+
+
+def _single_posture(area, probe):
+    """The posture that touched both A_i and B_i (single probe detection,
+    Fig. 6), or None. Registration may store two postures a step apart that
+    both carry A and B -- that is still one detection."""
+    for pose in (area.pose_b, area.pose_a):
+        if _near_segment(area.a, pose, probe) and _near_segment(area.b, pose, probe):
+            return pose
+    return None
+
+
+def _single_detection(probe, pose, area):
+    """Definition 1, Fig. 6(a), for an area whose A_i and B_i lie on one
+    recorded posture: bring the probe back to that posture -- along its line
+    shifted 2 tol away from the body contact, so the tip does not catch the
+    grazed corner -- then generate G_i by rotating about the tip. Returns
+    G_i, or None when Area(G_i) = 0 (Fig. 6(b))."""
+    t = pose.direction
+    n = np.array([-t[1], t[0]])
+    along = [(np.asarray(p) - pose.joint) @ t for p in (area.a, area.b)]
+    body_pt = (area.a, area.b)[int(np.argmin(along))]  # Def. 9: tip point is P_1st
+    side = 1.0 if (np.asarray(body_pt) - pose.joint) @ n >= 0 else -1.0
+    shifted = Posture(pose.joint - side * 2 * probe.tol * n, t)
+    if _reestablish(probe, shifted).tip_contact is None:
         return None
-    tip = probe.tip.copy()
-    body = [c for c in r.contacts if c.face != "tip"]
-    rot = -1 if (body and body[0].face == LEFT) else 1
-    r = probe.pivot(rot, np.pi / 4)
-    if abs(r.angle) <= 4 * probe.ang_tol:
-        return None
-    return Polygon([tip, pose.joint, r.joint])
+    return pivot_G(probe, RIGHT if side > 0 else LEFT)
 
 
 class _Run:
@@ -106,9 +122,12 @@ class _Run:
         probe, eps = self.probe, self.eps
         if area.dist < eps:
             return self.close(area, "W2", "Dist(A,B) < eps")
-        G = None
-        if area.single:
-            G = _single_detection(probe, area)
+        G = area.G
+        if area.zero_G:
+            return self.close(area, "W3", "single probe detection, Area(G) = 0")
+        pose = None if G is not None else _single_posture(area, probe)
+        if pose is not None:
+            G = _single_detection(probe, pose, area)
             if G is None:
                 return self.close(area, "W3", "single probe detection, Area(G) = 0")
         reading, G = initial_pass(probe, area, G)
@@ -137,6 +156,11 @@ class _Run:
         sides, q = plan_sides(local)
         pose_d = Posture(local.reading.joint, local.reading.direction)
         kids = []
+        dq = None
+        if len(sides) == 1 and q is not None:  # Fig. 12(c): (D_i, Q) is a single
+            dq = register(local.point, pose_d, q.point, pose_d, sides[0], area.index,
+                          "fig12c", area.depth + 1)  # probe detection: G_i now
+            attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
             if k and _reestablish(probe, pose_d).tip_contact is None:
                 kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
@@ -152,8 +176,7 @@ class _Run:
             pose_fin = area.pose_a if fin_is_A else area.pose_b
             d = area.depth + 1
             if q is not None:
-                kids.append(register(local.point, pose_d, q.point, pose_d, fin_is_A,
-                                     area.index, "fig12c", d))
+                kids.append(dq)
                 kids.append(register(q.point, pose_d, p_fin, pose_fin, fin_is_A,
                                      area.index, "fig12c", d))
             else:

@@ -51,7 +51,7 @@ __all__ = [
 
 #: pairs (points x edges) per chunk; ~15 float64 temporaries of this size
 _CHUNK = 500_000
-#: points per chunk; keeps the row offsets of the segmented sort small (exact to ~1e-11 rad)
+#: points per chunk
 _MAX_ROWS = 4096
 
 
@@ -161,24 +161,29 @@ def sample_contour(loops, spacing: float) -> ContourSamples:
     )
 
 
-def _segmented_gap(row, st, en, nrows, width):
-    """Widest open gap of [0, width] per row left by closed arcs ``[st, en]`` of ``row``."""
-    out = np.full(nrows, width)
-    if len(row) == 0:
-        return out
-    order = np.argsort(row * (4.0 * width) + st, kind="stable")  # by row, then start
-    row, s, e = row[order], st[order], en[order]
-    first = np.r_[True, row[1:] != row[:-1]]
-    # running max of ends, restarted at each row (ends of a row are >= row offset)
-    e_run = np.maximum.accumulate(e + row * (4.0 * width)) - row * (4.0 * width)
-    prev = np.r_[0.0, e_run[:-1]]
-    gap = np.where(first, s, s - prev)
-    last = np.r_[first[1:], True]  # last arc of its row
-    starts = np.flatnonzero(first)
-    inner = np.maximum.reduceat(gap, starts)
-    trail = width - e_run[last]
-    out[row[starts]] = np.maximum(inner, trail)
-    return np.clip(out, 0.0, width)
+def _segmented_gap(row, st, en, nrows, width, circular=False):
+    """Widest open gap of [0, width] left by closed arcs ``[st, en]`` of points ``row``.
+
+    ``circular`` joins the gaps at both ends. Returns (nrows,) float.
+    """
+    order = np.argsort(row, kind="stable")
+    row, st, en = row[order], st[order], en[order]
+    counts = np.bincount(row, minlength=nrows)
+    pos = np.arange(len(row)) - (np.cumsum(counts) - counts)[row]
+    shape = (nrows, max(int(counts.max(initial=0)), 1))
+    s = np.full(shape, np.inf)  # padding: empty arcs, sorted last
+    e = np.full(shape, -np.inf)
+    s[row, pos], e[row, pos] = st, en
+    order = np.argsort(s, axis=1)
+    s = np.minimum(np.take_along_axis(s, order, axis=1), width)  # padding opens no gap
+    e = np.maximum(np.maximum.accumulate(np.take_along_axis(e, order, axis=1), axis=1), 0.0)
+    lead, trail = s[:, 0], width - e[:, -1]
+    gap = np.maximum(lead, trail)
+    if shape[1] > 1:
+        gap = np.maximum(gap, (s[:, 1:] - e[:, :-1]).max(axis=1))
+    if circular:
+        gap = np.maximum(gap, lead + trail)
+    return np.clip(gap, 0.0, width)
 
 
 def _free_chunk(p, own, a, b, atol):
@@ -239,16 +244,7 @@ def _free_chunk(p, own, a, b, atol):
         en2 = lo[w] + np.pi
         nv = int((~inner).sum())
         rr, ss, ee = np.r_[r1, r2], np.r_[st1, st2], np.r_[en1, en2]
-        gap = _segmented_gap(rr, ss, ee, nv, 2 * np.pi)
-        # join the gaps at both ends of [0, 2 pi]
-        lead = np.full(nv, 2 * np.pi)
-        trail = np.full(nv, 2 * np.pi)
-        if len(rr):
-            np.minimum.at(lead, rr, ss)
-            emax = np.zeros(nv)
-            np.maximum.at(emax, rr, ee)
-            trail = np.where(np.bincount(rr, minlength=nv) > 0, 2 * np.pi - emax, 2 * np.pi)
-        out[~inner] = np.clip(np.maximum(gap, lead + trail), 0.0, 2 * np.pi)
+        out[~inner] = _segmented_gap(rr, ss, ee, nv, 2 * np.pi, circular=True)
     return out
 
 

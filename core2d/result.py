@@ -30,7 +30,9 @@ class AreaRecord:
         bootstrap).
     rule : str
         What created it: ``"bootstrap"``, ``"case2-1"``, ``"case2-2"``,
-        ``"case2-3"``, ``"case3"``, ``"case4"``, ``"fig12c"``, ``"escape"``.
+        ``"case2-3"``, ``"case3"``, ``"case4"``, ``"fig12c"``, ``"one-sided"``
+        (Theorem 4 (B)/(C): the side not traced), ``"left"`` (a trace left
+        the area through its other end), ``"escape"``, ``"limit"``.
     outcome : str
         How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,
         ``"W3"``, ``"split"`` (children registered), ``"unknown"`` (budget).

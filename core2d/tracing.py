@@ -15,12 +15,13 @@ Case 4 (joint blocked). Non-traced parts are registered by the rule of §4.3.3.
 from __future__ import annotations
 
 import numpy as np
+from shapely.geometry import Point
 
-from core2d.areas import register
+from core2d.areas import pivot_G, register
 from core2d.readings import LEFT, RIGHT, TIP
-from core2d.regions import Posture, T_contains, contains, in_V, trace_direction
+from core2d.regions import Posture, T_contains, in_V, trace_direction
 
-__all__ = ["plan_sides", "trace_side"]
+__all__ = ["plan_sides", "trace_side", "attach_pivot_G", "is_internal"]
 
 
 def plan_sides(local):
@@ -42,11 +43,25 @@ def plan_sides(local):
     return [True, False], None
 
 
-def _is_internal(p2, area, G, joint_i):
-    """Case 2-1 test: P_2nd in G_i cup (T_i cap not-V_i) (Fig. 13)."""
-    if contains(G, p2):
+def _on_probe(point, probe) -> bool:
+    """Single probe detection test (Def. 9): is ``point`` on the probe now?"""
+    w = np.asarray(point) - probe.joint
+    s = float(np.clip(w @ probe.direction, 0.0, probe.length))
+    return float(np.linalg.norm(w - s * probe.direction)) <= probe.tip_zone
+
+
+def attach_pivot_G(area, probe, body_face):
+    """Generate G_i of a single probe detection now, while the probe is there."""
+    G = pivot_G(probe, body_face)
+    area.G, area.zero_G = G, G is None
+
+
+def is_internal(p2, area, G, joint_i):
+    """Case 2-1 test (Fig. 13): P_2nd in G_i cup (T_i cap not-V_i)."""
+    q = np.asarray(p2, float)
+    if G.buffer(1e-9).contains(Point(*q)):
         return True
-    return T_contains(joint_i, area.a, area.b, p2) and not in_V(p2, area.a, area.b)
+    return T_contains(joint_i, area.a, area.b, q) and not in_V(q, area.a, area.b)
 
 
 def trace_side(probe, area, G, joint_i, local, toward_B, budget):
@@ -67,11 +82,12 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
     fin_is_A = not toward_B  # Definition 8
     p_fin = area.a if fin_is_A else area.b
     pose_fin = area.pose_a if fin_is_A else area.pose_b
+    p_other = area.b if fin_is_A else area.a
     polylines, new, cases = [], [], []
     depth = area.depth + 1
     pieces = [local.point[None]]
     while budget():
-        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin)
+        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other)
         if len(r.trace):
             pieces.append(r.trace)
         p1 = pieces[-1][-1]
@@ -83,10 +99,12 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
         if r.event == "jump":
             p2 = r.contacts[0].point
             pose2 = Posture(r.joint, r.direction)
-            if _is_internal(p2, area, G, joint_i):
+            if is_internal(p2, area, G, joint_i):
                 cases.append("case2-1")
-                new.append(register(p1, pose1, p2, pose2, fin_is_A, area.index,
-                                    "case2-1", depth))
+                kid = register(p1, pose1, p2, pose2, fin_is_A, area.index, "case2-1", depth)
+                if r.contacts[0].face != TIP and _on_probe(p1, probe):
+                    attach_pivot_G(kid, probe, r.contacts[0].face)  # Fig. 6
+                new.append(kid)
                 if r.contacts[0].face == TIP:
                     polylines.append(np.concatenate(pieces))
                     pieces = [p2[None]]
@@ -94,6 +112,16 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
                 new.append(register(p2, pose2, p_fin, pose_fin, fin_is_A, area.index,
                                     "case2-1", depth))
                 break
+            cases.append("case2-2")
+            new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index,
+                                "case2-2", depth))
+            break
+        if r.event == "left":  # traced out through the other end: the part
+            cases.append("left")  # toward P_fin is still unknown (Def. 8 assumes
+            new.append(register(local.point, Posture(local.reading.joint, t_star),
+                                p_fin, pose_fin, fin_is_A, area.index, "left", depth))
+            break  # K2 leads to B_i, which a deep D_i can invert)
+        if r.event == "reached-body":  # P_fin reached by the body, not the tip
             cases.append("case2-2")
             new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index,
                                 "case2-2", depth))

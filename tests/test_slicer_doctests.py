@@ -1,0 +1,33 @@
+"""The slicer modules' docstring examples run (they are the documentation)."""
+from __future__ import annotations
+
+import doctest
+import importlib
+
+import pytest
+
+MODULES = [
+    "slicer",
+    "slicer.planes",
+    "slicer.degenerate",
+    "slicer.section",
+    "slicer.embree_contact",
+    "slicer.exact",
+    "slicer.slices",
+    "slicer.agreement",
+]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_doctests(name):
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0
+
+
+def test_public_api():
+    import slicer
+
+    assert sorted(slicer.__all__) == sorted(set(slicer.__all__))
+    for name in slicer.__all__:
+        assert getattr(slicer, name).__doc__

@@ -86,6 +86,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     trace = [last.point] if last is not None else []
     before = (probe.joint.copy(), probe.direction.copy())
     event, primary = "limit", None
+    prev_disp = None
     for _ in range(max_steps):
         t = probe.direction
         if stop_at is not None and _segment_distance(
@@ -103,13 +104,18 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         h = min(step, max_dist - travelled)
         joint = probe.joint + h * v
         status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
-        continuous = (
-            status == "ok" and contact.face == TIP and last is not None
-            and np.linalg.norm(contact.point - last.point) <= jump
-        )
-        if not continuous and h > dmin:
-            step = h / 2
-            continue
+        sliding = status == "ok" and contact.face == TIP and last is not None
+        disp = float(np.linalg.norm(contact.point - last.point)) if sliding else np.inf
+        continuous = disp <= jump
+        if not continuous:
+            # A jump keeps a finite gap as the step shrinks; a fast continuous
+            # slide (probe near-normal to the surface) shrinks with the step.
+            shrinking = sliding and (prev_disp is None or disp < 0.75 * prev_disp)
+            if (h > dmin or shrinking) and h > dmin / 1024:
+                prev_disp = disp if sliding else None
+                step = h / 2
+                continue
+        prev_disp = None
         if status == "jammed":
             event = "blocked"
             break

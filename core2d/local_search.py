@@ -61,9 +61,14 @@ def initial_pass(probe, area, G=None):
     start, GV = _start_point(probe, G, area.a, area.b)
     if start is None:
         return None, G
+    # Two triangles (Fig. 5(c)/(d)): (c) when L_{A0}^{B0} -- here the
+    # workspace circle -- crosses the joints' triangle, i.e. the common point
+    # lies inside the circle: the pass must go through it. Otherwise (d) or a
+    # convex G_i cap V_i: aim at the centre of L_{A_i}^{B_i}.
     aim = common_point(area.a, area.b, area.pose_a, area.pose_b)
-    if aim is None or GV.geom_type == "Polygon":
-        aim = (area.a + area.b) / 2  # convex G_i cap V_i: centre of L_{A_i}^{B_i}
+    if aim is None or GV.geom_type == "Polygon" or \
+            np.linalg.norm(aim - probe.center) >= probe.radius:
+        aim = (area.a + area.b) / 2
     t = aim - start
     if np.linalg.norm(t) < probe.tol:
         return None, G

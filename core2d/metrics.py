@@ -57,10 +57,10 @@ def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _nearest(tree, points) -> tuple[np.ndarray, np.ndarray]:
-    """(m,) nearest tree item and distance for every point."""
+    """(m,) nearest tree item and distance for every point (-1 and inf for an empty tree)."""
     idx, dist = tree.query_nearest(shapely.points(points), all_matches=False, return_distance=True)
-    item = np.empty(len(points), dtype=np.int64)
-    d = np.empty(len(points))
+    item = np.full(len(points), -1, dtype=np.int64)
+    d = np.full(len(points), np.inf)
     item[idx[0]], d[idx[0]] = idx[1], dist
     return item, d
 
@@ -79,7 +79,8 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     dict with ``mask`` (m,) bool (samples under some same-loop lid),
     ``cross_loop`` (n,) bool, ``offset`` (n,) float (largest distance of A or
     B to the contour), ``arc_length`` (n,) float (0 for cross-loop lids) and
-    ``member`` (n, m) bool (samples under each lid).
+    ``member`` (n, m) bool (samples under each lid). Without any contour
+    every lid counts as cross-loop, with an infinite offset.
 
     Examples
     --------
@@ -100,6 +101,9 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     elen = np.hypot(*e.T)
     start = np.cumsum(elen) - elen
     edge_s = start - (np.cumsum(samples.loop_lengths) - samples.loop_lengths)[loop]
+    if len(a) == 0:  # no contour: nothing to put a lid on
+        out.update(cross_loop=np.ones(n, dtype=bool), offset=np.full(n, np.inf))
+        return out
     tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
     ends = lids.reshape(-1, 2)  # A0, B0, A1, B1, ...
     edge, dist = _nearest(tree, ends)
@@ -189,7 +193,7 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
         "detected_length": detected_length,
         "precise_length": float(dl[d_det_pieces <= tol].sum()),
         "precision": float(dl[d_det_pieces <= tol].sum() / detected_length) if detected_length > 0 else 1.0,
-        "hausdorff_detected_to_true": float(d_det.max()) if len(d_det) else None,
+        "hausdorff_detected_to_true": float(d_det.max()) if len(d_det) and len(a) else None,
         "hausdorff_true_reachable_to_detected": (float(d_true[reach].max())
                                                  if len(da) and reach.any() else None),
         "w3_count": len(result.w3),

@@ -175,3 +175,11 @@ def test_total_metrics_weighting():
     assert t["hausdorff_detected_to_true"] == pytest.approx(5.0)  # the shifted polyline
     assert total_metrics([empty])["hausdorff_detected_to_true"] is None
     assert total_metrics([])["slices"] == 0
+
+
+def test_empty_contour():
+    """A slice that cuts nothing (recon3d passes ``[]``): no crash, plain JSON."""
+    assert metrics([])["coverage"] == 1.0
+    m = metrics([], w1=[np.array([[0.0, 0.0], [1.0, 1.0]])], w3=[np.array([[0.0, 0.0], [1.0, 0.0]])])
+    assert m["precision"] == 0.0 and m["hausdorff_detected_to_true"] is None
+    assert m["w3_soundness"] == 0.0 and m["w3_off_contour"] == 1

@@ -48,9 +48,12 @@ def _settle(probe, joint, theta, rot_dir):
 
 
 def _segment_distance(point, a, b) -> float:
-    ab = b - a
-    s = np.clip((point - a) @ ab / (ab @ ab), 0.0, 1.0)
-    return float(np.linalg.norm(a + s * ab - point))
+    """Distance from ``point`` to segment ab (scalar math: hot path)."""
+    px, py, ax, ay = float(point[0]), float(point[1]), float(a[0]), float(a[1])
+    abx, aby = float(b[0]) - ax, float(b[1]) - ay
+    den = abx * abx + aby * aby
+    s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
+    return float(np.hypot(ax + s * abx - px, ay + s * aby - py))
 
 
 def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,

@@ -113,7 +113,7 @@ def _tip_bound(probe, G, a, b, theta, rot_dir, limit):
     angs = theta + rot_dir * np.linspace(0, limit, n + 1)[1:]
     tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
     free_side = in_V(tips, a, b)
-    inside = shapely.contains_xy(G.buffer(probe.tol), tips[:, 0], tips[:, 1])
+    inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])  # G: buffered by tol
     bad = free_side & ~inside
     if not bad.any():
         return limit
@@ -131,6 +131,8 @@ def bisection(probe, area, G, reading, max_iter=60):
     r = reading
     last = r.tip_contact.point
     small = 0
+    G = G.buffer(probe.tol)  # Theorem 3 bound, tolerant to the contact resolution
+    shapely.prepare(G)
     it = 0
     con_ccw = con_cw = False
     for it in range(1, max_iter + 1):

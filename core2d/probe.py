@@ -27,7 +27,10 @@ _REFINE = 16
 def unit(angle) -> np.ndarray:
     """Unit vector(s) at ``angle`` (radians, counter-clockwise from +x)."""
     a = np.asarray(angle, dtype=np.float64)
-    return np.stack([np.cos(a), np.sin(a)], axis=-1)
+    out = np.empty(a.shape + (2,))
+    np.cos(a, out=out[..., 0])
+    np.sin(a, out=out[..., 1])
+    return out
 
 
 def angle_of(vec) -> float:
@@ -67,6 +70,7 @@ class Probe:
         # are the tip's contact (a probe lying at a grazing angle).
         self.tip_zone = self.eps / 2.0
         self.stats = SenseStats()
+        self._offset_cache = {}
         self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
         self.theta = -np.pi / 2
 
@@ -132,7 +136,14 @@ class Probe:
 
     def _offsets(self, max_angle):
         """Angular offsets of a search: fine first (2 ang_tol), growing 4x per
-        window of 8 rays up to the eps/4 fan spacing, then constant."""
+        window of 8 rays up to the eps/4 fan spacing, then constant. Cached
+        per ``max_angle`` (they depend on nothing else)."""
+        key = float(max_angle)
+        if key not in self._offset_cache:
+            self._offset_cache[key] = self._make_offsets(key)
+        return self._offset_cache[key]
+
+    def _make_offsets(self, max_angle):
         out, pos, step = [], 0.0, min(self.fan_step, 2 * self.ang_tol)
         while step < self.fan_step and pos < max_angle:
             ks = pos + step * np.arange(1, 9)

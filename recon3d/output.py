@@ -19,6 +19,13 @@ def _world(cut, pts) -> list:
     return np.asarray(cut.to_3d(np.asarray(pts, float).reshape(-1, 2))).round(9).tolist()
 
 
+def _area_log(cut, rec) -> dict:
+    """One A_iB_i record: which rule created it and how it ended."""
+    a, b = _world(cut, np.stack([rec.a, rec.b]))
+    return {"index": int(rec.index), "a": a, "b": b, "parent": int(rec.parent),
+            "rule": rec.rule, "outcome": rec.outcome, "note": rec.note}
+
+
 def _slice_document(srun) -> dict:
     cut, res = srun.slice, srun.result
     plane = cut.plane
@@ -35,6 +42,7 @@ def _slice_document(srun) -> dict:
         "v": np.asarray(plane.v, float).tolist(),
         "segments": segments,
         "unknown": [_world(cut, w) for w in res.unknown],
+        "areas": [_area_log(cut, rec) for rec in res.areas],
         "nudge": float(plane.nudge),
         "stats": stats,
     }

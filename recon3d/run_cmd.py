@@ -62,6 +62,8 @@ def _run(args) -> int:
         mesh = meshes.load(args.input)
     except meshes.MeshError as exc:
         raise UsageError(str(exc)) from None
+    if Path(args.input).exists() and not args.quiet:
+        print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")

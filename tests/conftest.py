@@ -6,6 +6,17 @@ from pathlib import Path
 import pytest
 
 SHARED_MESHES = Path(__file__).resolve().parents[1].parent / "shared" / "meshes"
+# Real meshes of ../shared/meshes/MANIFEST.tsv used by the slicer tests.
+REAL_MESHES = [
+    "trimesh_featuretype.stl",
+    "trimesh_idler_riser.stl",
+    "mujoco_spot.ply",
+    "vtk_42400-IDGH.stl",
+    "ravens_cup.ply",
+    "ajc_teapot.obj",  # not watertight: trimesh section fallback
+    "trimesh_fandisk.obj",
+    "trimesh_octagonal_pocket.stl",
+]
 
 
 @pytest.fixture(scope="session")

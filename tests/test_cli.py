@@ -33,6 +33,10 @@ def test_run_writes_the_sensing_contract(tmp_path):
         assert set(s["stats"]) >= {"motions", "rays", "joint_path", "pushes", "areas",
                                    "escapes", "budget_hit", "seconds"}
         assert s["stats"]["pushes"] == 0
+        log = s["areas"]  # the A_iB_i log: every area's rule and outcome
+        assert len(log) == s["stats"]["areas"] and {a["outcome"] for a in log} <= {
+            "traced", "W2", "W3", "split", "unknown"}
+        assert all(a["rule"] for a in log) and log[0]["rule"] == "bootstrap"
         classes = {seg["class"] for seg in s["segments"]}
         assert classes <= {"W1", "W2", "W3"} and "W1" in classes
         z = s["origin"][2]
@@ -65,3 +69,12 @@ def test_empty_mesh_file_is_rejected(tmp_path):
     bad.write_bytes(b"")
     r = _cli("run", str(bad), "--out", str(tmp_path / "o"))
     assert r.returncode == 2 and "Traceback" not in r.stderr
+
+
+def test_run_on_a_mesh_file_reports_it(tmp_path):
+    path = tmp_path / "block.stl"
+    meshes.load("deep_slot").export(path)
+    r = _cli("run", str(path), "--out", str(tmp_path / "o"), "--slices", "1")
+    assert r.returncode == 0, r.stderr
+    assert "faces" in r.stderr  # the one-line mesh report (units / scale)
+    assert json.loads((tmp_path / "o" / "sensing.json").read_text())["mesh"] == "block.stl"

@@ -20,7 +20,7 @@ import shapely
 from shapely.geometry import Point
 
 from core2d.readings import TIP
-from core2d.regions import G_region, V_polygon, common_point, in_V, polygonal
+from core2d.regions import G_region, V_polygon, common_point, cross, in_V, polygonal
 
 __all__ = ["initial_pass", "bisection", "LocalResult", "wrap"]
 
@@ -30,37 +30,36 @@ def wrap(angle):
 
 
 def _start_point(probe, G, a, b):
-    """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the part of the
-    workspace circle inside G_i cap V_i (or G_i cap V_i's far end)."""
+    """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the longest
+    piece of the workspace circle inside G_i cap V_i. None when that set is
+    empty: no pass from F reaches the area (Theorem 1 has no start)."""
     GV = polygonal(G.intersection(V_polygon(a, b, probe.radius + probe.length)))
     if GV.is_empty or GV.area <= 0:
         return None, GV
     ring = Point(*probe.center).buffer(probe.radius, 256).exterior
     arc = ring.intersection(GV)
-    if not arc.is_empty and arc.length > 0:
-        line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
-        return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
-    mid = (np.asarray(a) + np.asarray(b)) / 2
-    far = max(GV.exterior.coords if GV.geom_type == "Polygon" else
-              shapely.get_coordinates(GV), key=lambda q: np.linalg.norm(np.subtract(q, mid)))
-    return np.asarray(far, float), GV
+    if arc.is_empty or arc.length <= probe.tol:
+        return None, GV
+    line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
+    return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
 
 
 def initial_pass(probe, area, G=None):
-    """Theorem 1 insertion for ``area``; returns (Reading, G_i) or (None, G_i).
+    """Theorem 1 insertion for ``area``.
 
-    G_i defaults to the region of the two postures (Definition 1); for a
-    single probe detection the caller passes the triangle swept about the
-    tip. G_i with Area(G_i) = 0 (a line segment) returns (None, G_i): the
-    caller categorises A_iB_i as W3.
+    Returns ``(Reading, G_i, None)`` or ``(None, G_i, why)``. G_i defaults to
+    the region of the two postures (Definition 1); for a single probe
+    detection the caller passes the triangle swept about the tip. Without a
+    pass -- Area(G_i) = 0, or no point of L_{A0}^{B0} cap G_i cap V_i -- the
+    caller categorises A_iB_i as W3 and ``why`` says which.
     """
     if G is None:
         G = G_region(area.a, area.b, area.pose_a, area.pose_b)
     if G.area <= probe.tol * max(area.dist, probe.tol):
-        return None, G
+        return None, G, "Area(G) = 0"
     start, GV = _start_point(probe, G, area.a, area.b)
     if start is None:
-        return None, G
+        return None, G, "no pass: L_A0B0 cap G cap V is empty"
     # Two triangles (Fig. 5(c)/(d)): (c) when L_{A0}^{B0} -- here the
     # workspace circle -- crosses the joints' triangle, i.e. the common point
     # lies inside the circle: the pass must go through it. Otherwise (d) or a
@@ -71,10 +70,12 @@ def initial_pass(probe, area, G=None):
         aim = (area.a + area.b) / 2
     t = aim - start
     if np.linalg.norm(t) < probe.tol:
-        return None, G
+        return None, G, "Area(G) = 0"
     probe.approach(start, t)
     r = probe.insert(2.5 * probe.radius)
-    return (r if r.tip_contact is not None else None), G
+    if r.tip_contact is None:
+        return None, G, "Theorem 1 pass found no contact"
+    return r, G, None
 
 
 @dataclass
@@ -104,17 +105,28 @@ def _bounds(joint, theta, a, b):
     return ccw, cw
 
 
+def _crosses(p, tips, a, b) -> np.ndarray:
+    """Do the segments p -> tips[k] properly cross segment ab? (k,) bool."""
+    ab, p, a, b = np.asarray(b) - a, np.asarray(p), np.asarray(a), np.asarray(b)
+    d1, d2 = cross(ab, p - a), cross(ab, tips - a)
+    pt = tips - p
+    d3, d4 = cross(pt, a - p), cross(pt, b - p)
+    return (d1 * d2 < 0) & (d3 * d4 < 0)
+
+
 def _tip_bound(probe, G, a, b, theta, rot_dir, limit):
-    """Theorem 3: largest swing (<= limit) keeping the tip, while it is on the
-    free side of L_AB, inside G_i (checked on the swept arc)."""
+    """Theorem 3: largest swing (<= limit) keeping the tip inside
+    T_i^(j) cap V_i cap G_i, or beyond it only across L_{A_i}^{B_i}
+    (checked on the swept arc; G is G_i buffered by tol)."""
     if limit <= 0:
         return 0.0
     n = max(4, int(limit / probe.fan_step))
     angs = theta + rot_dir * np.linspace(0, limit, n + 1)[1:]
     tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
     free_side = in_V(tips, a, b)
-    inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])  # G: buffered by tol
-    bad = free_side & ~inside
+    inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])
+    through_lid = _crosses(probe.joint, tips, a, b)
+    bad = ~((free_side & inside) | (~free_side & through_lid))
     if not bad.any():
         return limit
     i = int(np.argmax(bad))

@@ -130,9 +130,9 @@ class _Run:
             G = _single_detection(probe, pose, area)
             if G is None:
                 return self.close(area, "W3", "single probe detection, Area(G) = 0")
-        reading, G = initial_pass(probe, area, G)
+        reading, G, why = initial_pass(probe, area, G)
         if reading is None:
-            return self.close(area, "W3", "Area(G) = 0")
+            return self.close(area, "W3", why)
         c = reading.tip_contact.point
         pose_c = Posture(reading.joint, reading.direction)
         if _same(c, area.a, 2 * probe.tol) or _same(c, area.b, 2 * probe.tol):

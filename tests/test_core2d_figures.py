@@ -224,7 +224,7 @@ def test_fig5cd_two_triangles_with_a_common_point(name):
 
 def _theorem1(name):
     loops, probe, area = _fig5(name)
-    r, G = initial_pass(probe, area)
+    r, G, _ = initial_pass(probe, area)
     assert r is not None
     return loops, area, r
 

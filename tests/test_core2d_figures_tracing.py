@@ -53,7 +53,7 @@ def _fig4(which):
     loops = block(V_POCKET)
     probe = make_probe(loops)
     area = vertical_area(probe, *FIG4_AREAS[which])
-    r, G = initial_pass(probe, area)
+    r, G, _ = initial_pass(probe, area)
     local = bisection(probe, area, G, r)
     return loops, probe, area, G, r.joint.copy(), local
 
@@ -109,7 +109,7 @@ def test_fig4_sliding_along_a_straight_edge_is_not_a_jump():
     loops = block(V_POCKET)
     probe = make_probe(loops)
     area = vertical_area(probe, (20, 60), (80, 60))
-    r, G = initial_pass(probe, area)
+    r, G, _ = initial_pass(probe, area)
     local = bisection(probe, area, G, r)
     _, new, cases = trace_side(probe, area, G, r.joint.copy(), local, True, always)
     jumps = [kid for kid in new if kid.rule == "case2-1"]  # (P_1st, P_2nd), rule (ii)
@@ -123,7 +123,7 @@ def _final(top, a, b):
     loops = block(top)
     probe = make_probe(loops)
     area = vertical_area(probe, a, b)
-    r, G = initial_pass(probe, area)
+    r, G, _ = initial_pass(probe, area)
     assert on_int(loops, area.a, area.b, r.tip_contact.point)
     local = bisection(probe, area, G, r)
     assert local is not None and dist_to_contour(loops, local.point) < 1e-6

@@ -1,7 +1,7 @@
 """Unknown areas A_iB_i (§3.3) and the registration rule of §4.3.3."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -36,7 +36,6 @@ class Area:
     escape: bool = False
     G: object = None  # G_i made at detection time (single probe detection)
     zero_G: bool = False  # Area(G_i) = 0 verified at detection time
-    notes: list = field(default_factory=list)
 
     @property
     def dist(self) -> float:

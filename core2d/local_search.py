@@ -85,7 +85,7 @@ class LocalResult:
     reading : Reading at D_i. point : (2,) float -- D_i (tip contact).
     Y1 : 1 tip only, 2 multiple contacts. Y2 : 0 full constraint, 1 clockwise
     constrained, -1 counter-clockwise constrained.
-    iterations : int. repeated : bool -- converged onto A_i or B_i.
+    iterations : int.
     """
 
     reading: object
@@ -93,7 +93,6 @@ class LocalResult:
     Y1: int
     Y2: int
     iterations: int
-    repeated: bool = False
 
 
 def _bounds(joint, theta, a, b):
@@ -175,5 +174,4 @@ def bisection(probe, area, G, reading, max_iter=60):
         return None
     Y1 = 1 if all(c.face == TIP for c in r.contacts) else 2
     Y2 = 0 if con_cw == con_ccw else (1 if con_cw else -1)
-    near = min(np.linalg.norm(tip.point - area.a), np.linalg.norm(tip.point - area.b))
-    return LocalResult(r, tip.point, Y1, Y2, it, repeated=near <= 2 * probe.tol)
+    return LocalResult(r, tip.point, Y1, Y2, it)

@@ -112,8 +112,9 @@ class _Run:
             getattr(self.result, outcome.lower()).append(np.stack([area.a, area.b]))
 
     def children(self, area, kids):
+        same = self.probe.tip_zone  # contacts closer than eps/2 are one contact
         for kid in kids:
-            if _same(kid.a, area.a, self.probe.tol * 2) and _same(kid.b, area.b, self.probe.tol * 2):
+            if _same(kid.a, area.a, same) and _same(kid.b, area.b, same):
                 kid.escape = True  # the same contacts again: infinite loop escape
             self.add(kid)
         self.close(area, "split" if kids else "traced")

@@ -15,11 +15,10 @@ Case 4 (joint blocked). Non-traced parts are registered by the rule of §4.3.3.
 from __future__ import annotations
 
 import numpy as np
-from shapely.geometry import Point
 
 from core2d.areas import pivot_G, register
 from core2d.readings import LEFT, RIGHT, TIP
-from core2d.regions import Posture, T_contains, in_V, trace_direction
+from core2d.regions import Posture, T_contains, contains, in_V, trace_direction
 
 __all__ = ["plan_sides", "trace_side", "attach_pivot_G", "is_internal"]
 
@@ -59,7 +58,7 @@ def attach_pivot_G(area, probe, body_face):
 def is_internal(p2, area, G, joint_i):
     """Case 2-1 test (Fig. 13): P_2nd in G_i cup (T_i cap not-V_i)."""
     q = np.asarray(p2, float)
-    if G.buffer(1e-9).contains(Point(*q)):
+    if contains(G, q):
         return True
     return T_contains(joint_i, area.a, area.b, q) and not in_V(q, area.a, area.b)
 

@@ -1,7 +1,6 @@
 """``recon3d run INPUT --out DIR``: sense every slice, write the outputs."""
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 

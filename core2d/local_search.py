@@ -30,18 +30,22 @@ def wrap(angle):
 
 
 def _start_point(probe, G, a, b):
-    """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the longest
-    piece of the workspace circle inside G_i cap V_i. None when that set is
-    empty: no pass from F reaches the area (Theorem 1 has no start)."""
+    """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the longest piece
+    of the workspace circle inside G_i cap V_i; when the circle barely
+    touches it (postures converging there), the point of G_i cap V_i farthest
+    from L_{A_i}^{B_i}. None when G_i cap V_i is empty (no pass)."""
     GV = polygonal(G.intersection(V_polygon(a, b, probe.radius + probe.length)))
     if GV.is_empty or GV.area <= 0:
         return None, GV
     ring = Point(*probe.center).buffer(probe.radius, 256).exterior
     arc = ring.intersection(GV)
-    if arc.is_empty or arc.length <= probe.tol:
-        return None, GV
-    line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
-    return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
+    if not arc.is_empty and arc.length > probe.tol:
+        line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
+        return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
+    pts = shapely.get_coordinates(GV)
+    lid = shapely.LineString([a, b])
+    far = pts[int(np.argmax(shapely.distance(shapely.points(pts), lid)))]
+    return np.asarray(far, float), GV
 
 
 def initial_pass(probe, area, G=None):
@@ -59,7 +63,7 @@ def initial_pass(probe, area, G=None):
         return None, G, "Area(G) = 0"
     start, GV = _start_point(probe, G, area.a, area.b)
     if start is None:
-        return None, G, "no pass: L_A0B0 cap G cap V is empty"
+        return None, G, "no pass: G cap V is empty"
     # Two triangles (Fig. 5(c)/(d)): (c) when L_{A0}^{B0} -- here the
     # workspace circle -- crosses the joints' triangle, i.e. the common point
     # lies inside the circle: the pass must go through it. Otherwise (d) or a

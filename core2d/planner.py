@@ -75,6 +75,14 @@ def _single_posture(area, probe):
     return None
 
 
+def _fresh_postures(area, probe):
+    """Postures through A_i and B_i perpendicular to L_{A_i}^{B_i}, coming
+    from V_i (Definition 3), with their joints at probe length."""
+    d = (area.b - area.a) / area.dist
+    n = np.array([-d[1], d[0]])  # V_i side of A -> B
+    return (Posture(area.a + probe.length * n, -n), Posture(area.b + probe.length * n, -n))
+
+
 def _single_detection(probe, pose, area):
     """Definition 1, Fig. 6(a), for an area whose A_i and B_i lie on one
     recorded posture: bring the probe back to that posture -- along its line
@@ -132,6 +140,12 @@ class _Run:
             if G is None:
                 return self.close(area, "W3", "single probe detection, Area(G) = 0")
         reading, G, why = initial_pass(probe, area, G)
+        if reading is None and why.startswith("no pass"):
+            # the recorded postures leave no pass into V_i (stale postures
+            # inherited through registrations): probe again from the free
+            # side, perpendicular to L_{A_i}^{B_i}, before calling it W3
+            area.pose_a, area.pose_b = _fresh_postures(area, probe)
+            reading, G, why = initial_pass(probe, area)
         if reading is None:
             return self.close(area, "W3", why)
         c = reading.tip_contact.point

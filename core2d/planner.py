@@ -6,9 +6,12 @@ recorded itself; it never sees the contour. Per unknown area A_iB_i:
 1. Dist(A_i, B_i) < eps  ->  W2 (§3.1, §4.4).
 2. Single probe detection (Fig. 6): G_i by rotating about the tip;
    Area(G_i) = 0  ->  W3 (§4.2.1).
-3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i).
-4. Bisection local concave point search (Theorems 2, 3) to D_i; when it
-   finds A_i or B_i again, infinite loop escape (§4.4) splits A_iB_i at C.
+3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i);
+   when the recorded postures leave no pass into V_i, the area is probed
+   again from V_i, perpendicular to L_{A_i}^{B_i}, before it is called W3.
+4. Bisection local concave point search (Theorems 2, 3) to D_i. When the
+   same contacts come back (an area registered again within eps/2) or the
+   bisection fails, infinite loop escape (§4.4) splits A_iB_i at C.
 5. Tracing motion planning (Theorem 4) from D_i on one or both sides; the
    events Case 1 - 4 register new areas by the rule of §4.3.3 (and the
    Fig. 12(c) split for a one-sided start).
@@ -27,7 +30,7 @@ from core2d.bootstrap import bootstrap
 from core2d.local_search import bisection, initial_pass
 from core2d.probe import Probe
 from core2d.readings import LEFT, RIGHT
-from core2d.regions import Posture
+from core2d.regions import Posture, near_probe
 from core2d.result import AreaRecord, SliceResult
 from core2d.tracing import attach_pivot_G, plan_sides, trace_side
 
@@ -58,19 +61,13 @@ def _reestablish(probe, pose):
     return probe.insert(2.5 * probe.radius)
 
 
-def _near_segment(point, pose, probe) -> bool:
-    """Is ``point`` on the probe segment of ``pose`` (within eps/2)?"""
-    w = np.asarray(point) - pose.joint
-    s = float(np.clip(w @ pose.direction, 0.0, probe.length))
-    return float(np.linalg.norm(w - s * pose.direction)) <= probe.tip_zone
-
-
 def _single_posture(area, probe):
     """The posture that touched both A_i and B_i (single probe detection,
     Fig. 6), or None. Registration may store two postures a step apart that
     both carry A and B -- that is still one detection."""
     for pose in (area.pose_b, area.pose_a):
-        if _near_segment(area.a, pose, probe) and _near_segment(area.b, pose, probe):
+        if all(near_probe(p, pose.joint, pose.direction, probe.length, probe.tip_zone)
+               for p in (area.a, area.b)):
             return pose
     return None
 

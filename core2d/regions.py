@@ -22,7 +22,7 @@ from shapely.geometry import Point, Polygon
 
 __all__ = [
     "cross", "sgn", "in_V", "Posture", "G_region", "T_contains", "left_normal",
-    "trace_direction", "common_point", "polygonal", "V_polygon", "contains",
+    "trace_direction", "common_point", "polygonal", "V_polygon", "contains", "near_probe",
 ]
 
 
@@ -127,3 +127,10 @@ def trace_direction(t_star, toward_B: bool):
 def contains(geom, q) -> bool:
     """Point-in-region test tolerant to boundary points."""
     return bool(geom.buffer(1e-9).contains(Point(float(q[0]), float(q[1]))))
+
+
+def near_probe(point, joint, direction, length, tol) -> bool:
+    """Is ``point`` within ``tol`` of the probe segment joint -> joint + L t?"""
+    w = np.asarray(point, float) - joint
+    s = float(np.clip(w @ direction, 0.0, length))
+    return float(np.linalg.norm(w - s * np.asarray(direction))) <= tol

@@ -18,7 +18,7 @@ import numpy as np
 
 from core2d.areas import pivot_G, register
 from core2d.readings import LEFT, RIGHT, TIP
-from core2d.regions import Posture, T_contains, contains, in_V, trace_direction
+from core2d.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 
 __all__ = ["plan_sides", "trace_side", "attach_pivot_G", "is_internal"]
 
@@ -44,9 +44,7 @@ def plan_sides(local):
 
 def _on_probe(point, probe) -> bool:
     """Single probe detection test (Def. 9): is ``point`` on the probe now?"""
-    w = np.asarray(point) - probe.joint
-    s = float(np.clip(w @ probe.direction, 0.0, probe.length))
-    return float(np.linalg.norm(w - s * probe.direction)) <= probe.tip_zone
+    return near_probe(point, probe.joint, probe.direction, probe.length, probe.tip_zone)
 
 
 def attach_pivot_G(area, probe, body_face):
@@ -115,11 +113,14 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
             new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index,
                                 "case2-2", depth))
             break
-        if r.event == "left":  # traced out through the other end: the part
-            cases.append("left")  # toward P_fin is still unknown (Def. 8 assumes
+        if r.event == "left":
+            # Traced out through the other end of A_iB_i: Definition 8 assumes
+            # the K2 side leads to B_i, which a deep D_i can invert. The part
+            # toward P_fin is still unknown.
+            cases.append("left")
             new.append(register(local.point, Posture(local.reading.joint, t_star),
                                 p_fin, pose_fin, fin_is_A, area.index, "left", depth))
-            break  # K2 leads to B_i, which a deep D_i can invert)
+            break
         if r.event == "reached-body":  # P_fin reached by the body, not the tip
             cases.append("case2-2")
             new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index,
@@ -132,5 +133,9 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
             p1, pose1 = tip.point, Posture(r.joint, r.direction)  # P_1st replaced
         new.append(register(p1, pose1, p_fin, pose_fin, fin_is_A, area.index, rule, depth))
         break
+    else:  # the motion budget ran out: what is left stays unknown, reported
+        cases.append("limit")
+        new.append(register(pieces[-1][-1], Posture(probe.joint.copy(), probe.direction),
+                            p_fin, pose_fin, fin_is_A, area.index, "limit", depth))
     polylines.append(np.concatenate(pieces))
     return [p for p in polylines if len(p) >= 2], new, cases

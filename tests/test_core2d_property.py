@@ -56,3 +56,12 @@ def test_random_polygons_with_holes(loops):
         ring = shapely.LinearRing(hole)
         for line in res.w1:
             assert shapely.distance(shapely.points(line), ring).min() > EPS / 20
+
+
+def test_a_tiny_budget_ends_the_run_and_reports_what_is_unknown():
+    loop = np.array([[0, 0], [100, 0], [100, 50], [60, 50], [50, 20], [40, 50], [0, 50]], float)
+    res = sense_slice(ExactContact([loop]), (np.array([50.0, 25.0]), 57.0), EPS, max_motions=150)
+    assert res.stats.budget_hit and res.unknown
+    assert res.stats.motions < 150 + 100  # the motion in flight finishes, nothing more
+    outcomes = {a.outcome for a in res.areas}
+    assert "unknown" in outcomes and "pending" not in outcomes

@@ -177,5 +177,7 @@ def bisection(probe, area, G, reading, max_iter=60):
     if tip is None:
         return None
     Y1 = 1 if all(c.face == TIP for c in r.contacts) else 2
+    # Definition 5; unconstrained both ways (stalled or out of iterations) is
+    # treated like full constraint: Theorem 4 (A) traces both sides.
     Y2 = 0 if con_cw == con_ccw else (1 if con_cw else -1)
     return LocalResult(r, tip.point, Y1, Y2, it)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d.readings import TIP, Contact
+from core2d.readings import TIP
 
 __all__ = ["compliant_trace", "MAX_SETTLE"]
 
@@ -151,5 +151,5 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0],
               before_direction=before[1])
     if primary is not None:
-        kw["primary"] = Contact(primary.point, primary.face, primary.along)
+        kw["primary"] = primary
     return probe.sense(event, **kw)

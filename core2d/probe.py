@@ -280,7 +280,7 @@ class Probe:
         i = int(np.argmax(np.isfinite(d)))
         return (i * step,)
 
-    def translate(self, v, dist, samples=None) -> Reading:
+    def translate(self, v, dist) -> Reading:
         """Translate the joint along unit ``v`` by up to ``dist`` keeping t.
 
         Parallel rays from samples along the probe (spacing eps/4 inside the

@@ -14,7 +14,7 @@ import numpy as np
 
 import core2d
 import slicer
-from core2d.metrics import slice_metrics, total_metrics
+from core2d.truth.metrics import slice_metrics, total_metrics
 
 __all__ = ["RunConfig", "SliceRun", "MeshRun", "sense_mesh"]
 

@@ -4,7 +4,7 @@ Cut a triangle mesh with parallel planes; on each plane, get the reference
 cross-section (closed loops in the plane's 2D frame) and a contact model
 whose ``cast(origins, dirs, max_dist)`` answers in-plane ray queries with
 Embree (``EmbreeContact``) or exactly against the contour (``ExactContact``);
-see :mod:`core2d.contact` for the contract.
+see :mod:`core2d.sim.contact` for the contract.
 
 Examples
 --------

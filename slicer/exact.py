@@ -2,7 +2,7 @@
 
 Pure numpy segment intersection in float64 (segments outside the bounding
 box of a batch's finite rays are culled first). It has the same ``cast`` interface
-as the Embree backend (see :mod:`core2d.contact`) and is the reference for
+as the Embree backend (see :mod:`core2d.sim.contact`) and is the reference for
 tests and for the stability study; the planner never sees the contour itself.
 """
 from __future__ import annotations
@@ -86,7 +86,7 @@ class ExactContact:
         return self.starts[keep], self.edges[keep]
 
     def cast(self, origins, dirs, max_dist):
-        """First contour hit of each ray; see :mod:`core2d.contact`.
+        """First contour hit of each ray; see :mod:`core2d.sim.contact`.
 
         Parameters
         ----------

@@ -15,10 +15,10 @@ import numpy as np
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import substring
 
-from core2d.areas import Area
-from core2d.planner import Budget, _Run
-from core2d.probe import Probe
-from core2d.regions import Posture
+from core2d.planner.areas import Area
+from core2d.planner.run import Budget, _Run
+from core2d.sim.probe import Probe
+from core2d.planner.regions import Posture
 from slicer.exact import ExactContact
 
 EPS = 1.0

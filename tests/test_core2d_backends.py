@@ -11,8 +11,8 @@ import shapely
 import meshes
 import slicer
 from core2d import sense_slice
-from core2d.metrics import lid_arcs
-from core2d.reachability import sample_contour
+from core2d.truth.metrics import lid_arcs
+from core2d.truth.reachability import sample_contour
 
 SCENES = ["fig17_pocket", "fig18_overhangs", "deep_slot", "gear"]
 

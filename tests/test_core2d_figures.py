@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 from shapely.geometry import Point, Polygon, box
 
-from core2d.areas import Area, pivot_G, register
-from core2d.local_search import LocalResult, bisection, initial_pass
-from core2d.probe import unit
+from core2d.planner.areas import Area, pivot_G, register
+from core2d.planner.local_search import LocalResult, bisection, initial_pass
+from core2d.planar import unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
-from core2d.regions import (G_region, Posture, T_contains, common_point, contains, in_V, sgn,
+from core2d.planner.regions import (G_region, Posture, T_contains, common_point, contains, in_V, sgn,
                             trace_direction)
-from core2d.tracing import is_internal, plan_sides
+from core2d.planner.tracing import is_internal, plan_sides
 from figure_scenes import (DOWN, FIG9, FIG9_A, FIG9_B, FIG9_DIR_B, FIG9_EXT, FIG9_H, GRAZE_DIR,
                            LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, V_CORNER, V_POCKET, block,
                            chain, dist_to_contour, graze_point, make_probe, on_int, place,

@@ -16,11 +16,11 @@ from shapely.geometry import LineString, Point
 from shapely.ops import unary_union
 
 from core2d import sense_slice
-from core2d.local_search import bisection, initial_pass
-from core2d.planner import _reestablish
+from core2d.planner.local_search import bisection, initial_pass
+from core2d.planner.run import _reestablish
 from core2d.readings import LEFT, RIGHT, TIP
-from core2d.regions import G_region, Posture, in_V, trace_direction
-from core2d.tracing import is_internal, plan_sides, trace_side
+from core2d.planner.regions import G_region, Posture, in_V, trace_direction
+from core2d.planner.tracing import is_internal, plan_sides, trace_side
 from figure_scenes import (DOWN, EPS, HILL, HILL_MIRROR, HILL_TOP, LIP_LEFT, LIP_RIGHT,
                            OVERHANG_LEFT, OVERHANG_RIGHT, SLOPE_LEFT, SLOPE_RIGHT, V_BOTTOM,
                            V_POCKET, WORKSPACE, block, chain, dist_to_contour, make_probe, new_run,

@@ -13,7 +13,7 @@ import pytest
 import meshes
 import slicer
 from core2d import sense_slice
-from core2d.metrics import slice_metrics
+from core2d.truth.metrics import slice_metrics
 
 # Scenes outside the paper's assumptions (§3.2) and why.
 BREAKS_ASSUMPTIONS = {

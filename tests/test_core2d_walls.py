@@ -1,46 +1,74 @@
-"""The two walls of DESIGN.md: core2d is pure 2D, and its planner sees sensor
-readings only."""
+"""The walls of DESIGN.md, visible in the layout of core2d.
+
+* core2d is pure 2D: no module imports a 3D library or another package.
+* Three rooms: ``core2d/sim`` (the simulator, owns the geometry),
+  ``core2d/planner`` (the paper's algorithm, sees sensor readings only) and
+  ``core2d/truth`` (reachability and metrics against the true contour). The
+  planner imports neither of the others; the simulator and the ground truth
+  import neither the planner nor each other.
+* At run time only the simulator queries the contact model.
+"""
 import ast
-import re
 import pathlib
+import re
 import sys
 
 import numpy as np
+import pytest
 
 from slicer.exact import ExactContact
 from core2d import sense_slice
 
 CORE2D = pathlib.Path(__file__).resolve().parents[1] / "core2d"
 FORBIDDEN = {"trimesh", "embreex", "manifold3d", "pyvista", "vtk", "slicer", "meshes", "recon3d"}
-SIMULATOR = {"core2d.probe", "core2d.compliance"}
-PLANNER = ["planner", "local_search", "tracing", "bootstrap", "areas", "regions"]
+SHARED = {"core2d.planar", "core2d.readings", "core2d.result"}
+# room -> core2d modules it may import besides its own room and SHARED
+ALLOWED = {"sim": set(), "planner": set(), "truth": set()}
+SIMULATOR = {"core2d.sim.probe", "core2d.sim.compliance"}
 
 
 def _imports(path):
     tree = ast.parse(path.read_text())
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
-            yield from (a.name.split(".")[0] for a in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.module:
-            yield node.module.split(".")[0]
+            yield from (a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:  # relative: resolve against the file's package
+                pkg = ".".join(path.relative_to(CORE2D.parent).with_suffix("").parts[:-node.level])
+                yield f"{pkg}.{node.module}" if node.module else pkg
+            elif node.module:
+                yield node.module
 
 
 def test_core2d_imports_no_3d_library():
-    files = sorted(CORE2D.glob("*.py"))
-    assert len(files) >= 10
+    files = sorted(CORE2D.rglob("*.py"))
+    assert len(files) >= 15
     for path in files:
-        bad = FORBIDDEN.intersection(_imports(path))
-        assert not bad, f"{path.name} imports {bad}"
+        bad = FORBIDDEN.intersection(m.split(".")[0] for m in _imports(path))
+        assert not bad, f"{path.relative_to(CORE2D)} imports {bad}"
+
+
+@pytest.mark.parametrize("room", sorted(ALLOWED))
+def test_each_room_imports_only_itself_and_the_shared_modules(room):
+    files = sorted((CORE2D / room).glob("*.py"))
+    assert files
+    for path in files:
+        for mod in _imports(path):
+            if not mod.startswith("core2d"):
+                continue
+            ok = mod in SHARED or mod in ALLOWED[room] or mod.startswith(f"core2d.{room}")
+            assert ok, f"core2d/{room}/{path.name} imports {mod}"
 
 
 def test_planner_modules_never_touch_the_contact_model():
-    """Only the simulator may call ``cast``; the planner modules never name
-    the contact model, the ray fans, or the evaluation modules."""
-    for name in PLANNER:
-        src = (CORE2D / f"{name}.py").read_text()
+    """The planner never names the contact model, the ray fans, or the
+    evaluation modules: it commands motions and reads readings."""
+    files = sorted((CORE2D / "planner").glob("*.py"))
+    for path in files:
+        src = path.read_text()
         for pattern in (r"probe\.contact\b", r"\.cast\(", r"\._fan\(", r"\._search\(",
                         r"\._cast\(", r"\breachability\b", r"\bmetrics\b", r"\bloops\b"):
-            assert not re.search(pattern, src), f"core2d/{name}.py matches {pattern!r}"
+            assert not re.search(pattern, src), f"core2d/planner/{path.name} matches {pattern!r}"
 
 
 class _Guarded:

@@ -1,4 +1,4 @@
-"""Ground-truth metrics (core2d.metrics) on shapes whose answers are known by hand."""
+"""Ground-truth metrics (core2d.truth.metrics) on shapes whose answers are known by hand."""
 from __future__ import annotations
 
 import json
@@ -6,8 +6,8 @@ import json
 import numpy as np
 import pytest
 
-from core2d.metrics import slice_metrics, total_metrics
-from core2d.reachability import reachable_samples
+from core2d.truth.metrics import slice_metrics, total_metrics
+from core2d.truth.reachability import reachable_samples
 from core2d.result import SenseStats, SliceResult
 
 try:

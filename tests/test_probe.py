@@ -5,7 +5,8 @@ import pytest
 import shapely
 
 from slicer.exact import ExactContact
-from core2d.probe import Probe, unit
+from core2d.planar import unit
+from core2d.sim.probe import Probe
 from core2d.readings import LEFT, RIGHT, TIP
 
 V_BLOCK = [np.array([[0, 0], [100, 0], [100, 50], [60, 50], [50, 20], [40, 50], [0, 50]], float)]

@@ -1,4 +1,4 @@
-"""Exact reachability (core2d.reachability) against closed forms and brute force."""
+"""Exact reachability (core2d.truth.reachability) against closed forms and brute force."""
 from __future__ import annotations
 
 import numpy as np
@@ -9,7 +9,7 @@ from shapely.geometry.polygon import orient
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from core2d.reachability import (contour_edges, free_angle, loop_is_hole, reachable,
+from core2d.truth.reachability import (contour_edges, free_angle, loop_is_hole, reachable,
                                  reachable_samples, sample_contour)
 
 try:

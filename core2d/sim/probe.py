@@ -2,7 +2,7 @@
 
 A rigid probe of length L and negligible thickness hangs on a joint at
 ``joint`` and points along the unit vector t; the tip is ``joint + L t``.
-Contacts come from a :class:`core2d.contact.ContactModel` through batched
+Contacts come from a :class:`core2d.sim.contact.ContactModel` through batched
 ray casts: a fan of rays from the joint for a swing, one ray from the tip for
 an insertion, rays along the probe for a translation. Contacts are resolved
 to ``tol`` by bisection with refining fans. No dynamics, no friction: the
@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from core2d.planar import angle_of, unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.result import SenseStats
 
@@ -23,18 +24,6 @@ __all__ = ["Probe", "unit", "angle_of"]
 _WINDOWS = (8, 32, 128, 512, 2048, 8192)
 _REFINE = 16
 
-
-def unit(angle) -> np.ndarray:
-    """Unit vector(s) at ``angle`` (radians, counter-clockwise from +x)."""
-    a = np.asarray(angle, dtype=np.float64)
-    out = np.empty(a.shape + (2,))
-    np.cos(a, out=out[..., 0])
-    np.sin(a, out=out[..., 1])
-    return out
-
-
-def angle_of(vec) -> float:
-    return float(np.arctan2(vec[1], vec[0]))
 
 
 class Probe:
@@ -316,7 +305,7 @@ class Probe:
         return np.concatenate([np.linspace(lo, hi, n), [self.length]])
 
     def trace(self, v, tau, max_dist, **kw) -> Reading:
-        """Compliant tracing step sequence; see :func:`core2d.compliance.compliant_trace`."""
-        from core2d.compliance import compliant_trace
+        """Compliant tracing step sequence; see :func:`core2d.sim.compliance.compliant_trace`."""
+        from core2d.sim.compliance import compliant_trace
 
         return compliant_trace(self, v, tau, max_dist, **kw)

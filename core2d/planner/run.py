@@ -25,16 +25,15 @@ from collections import deque
 
 import numpy as np
 
-from core2d.areas import Area, pivot_G, register
-from core2d.bootstrap import bootstrap
-from core2d.local_search import bisection, initial_pass
-from core2d.probe import Probe
+from core2d.planner.areas import Area, pivot_G, register
+from core2d.planner.bootstrap import bootstrap
+from core2d.planner.local_search import bisection, initial_pass
 from core2d.readings import LEFT, RIGHT
-from core2d.regions import Posture, near_probe
+from core2d.planner.regions import Posture, near_probe
 from core2d.result import AreaRecord, SliceResult
-from core2d.tracing import attach_pivot_G, plan_sides, trace_side
+from core2d.planner.tracing import attach_pivot_G, plan_sides, trace_side
 
-__all__ = ["sense_slice", "Budget"]
+__all__ = ["explore", "Budget"]
 
 
 class Budget:
@@ -197,18 +196,15 @@ class _Run:
         self.children(area, kids)
 
 
-def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
-                max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
-    """Run the pulling-motion algorithm on one closed slice.
+def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
+    """Run the pulling-motion algorithm with ``probe`` until nothing is left.
 
     Parameters
     ----------
-    contact : ContactModel -- the slice's ray-cast backend.
-    workspace : ((2,) float, float) -- centre and radius of a circle that
-        contains the slice (all the robot knows beforehand).
-    eps : float -- the paper's epsilon (W2 threshold, smoothness scale).
-    probe_length : float, optional -- default 2 x workspace diameter.
-    tol : float, optional -- contact resolution, default eps / 20.
+    probe : object with the simulator's motions (approach, insert, swing,
+        turn_to, pivot, translate, trace, sense) and its joint pose; the
+        planner learns about the world only through the readings they return.
+    eps : float -- the paper's epsilon.
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
 
@@ -217,7 +213,6 @@ def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
     SliceResult in the slice's 2D frame.
     """
     t0 = time.perf_counter()
-    probe = Probe(contact, workspace, eps, probe_length, tol)
     budget = Budget(probe, max_motions, max_areas)
     run = _Run(probe, eps, budget)
     for area in bootstrap(probe, bootstrap_count):

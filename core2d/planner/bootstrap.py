@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d.areas import Area
-from core2d.probe import unit
-from core2d.regions import Posture, in_V
+from core2d.planner.areas import Area
+from core2d.planar import unit
+from core2d.planner.regions import Posture, in_V
 
 __all__ = ["bootstrap"]
 

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core2d.regions import Posture
+from core2d.planner.regions import Posture
 
 __all__ = ["Area", "register", "pivot_G"]
 

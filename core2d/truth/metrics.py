@@ -5,9 +5,9 @@ Evaluation code: it reads the true contour, the planner never does.
 Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
 
 * the true contour is sampled at sub-segment midpoints no farther apart than
-  ``spacing`` (:func:`core2d.reachability.sample_contour`); each sample
+  ``spacing`` (:func:`core2d.truth.reachability.sample_contour`); each sample
   stands for its piece of contour length; reachability is exact per sample
-  (:func:`core2d.reachability.reachable`);
+  (:func:`core2d.truth.reachability.reachable`);
 * **coverage** -- length of reachable samples within ``tol`` of W1 u W2,
   over the reachable length. ``eps / 2`` is the natural tolerance: every
   point of a W2 chord ``L_A^B`` with ``Dist(A, B) < eps`` lies within
@@ -85,7 +85,7 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     Examples
     --------
     >>> sq = [np.array([[0., 0.], [4., 0.], [4., 4.], [0., 4.]])]
-    >>> from core2d.reachability import sample_contour
+    >>> from core2d.truth.reachability import sample_contour
     >>> arcs = lid_arcs(sq, [np.array([[4., 2.], [2., 4.]])], sample_contour(sq, 0.5))
     >>> float(arcs["arc_length"][0])  # down, along the bottom, up, to the middle of the top
     12.0
@@ -135,7 +135,7 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
     tol : float, optional -- distance tolerance, default ``eps / 2``.
     spacing : float, optional -- sampling step, default ``tol / 2``.
     samples : (ContourSamples, (m,) bool), optional -- a cached
-        :func:`core2d.reachability.reachable_samples` of ``loops`` at ``spacing``.
+        :func:`core2d.truth.reachability.reachable_samples` of ``loops`` at ``spacing``.
 
     Returns
     -------

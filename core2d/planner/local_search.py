@@ -19,14 +19,11 @@ import numpy as np
 import shapely
 from shapely.geometry import Point
 
+from core2d.planar import wrap
 from core2d.readings import TIP
-from core2d.regions import G_region, V_polygon, common_point, cross, in_V, polygonal
+from core2d.planner.regions import G_region, V_polygon, common_point, cross, in_V, polygonal
 
-__all__ = ["initial_pass", "bisection", "LocalResult", "wrap"]
-
-
-def wrap(angle):
-    return (angle + np.pi) % (2 * np.pi) - np.pi
+__all__ = ["initial_pass", "bisection", "LocalResult"]
 
 
 def _start_point(probe, G, a, b):

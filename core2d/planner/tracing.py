@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d.areas import pivot_G, register
+from core2d.planner.areas import pivot_G, register
 from core2d.readings import LEFT, RIGHT, TIP
-from core2d.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
+from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 
 __all__ = ["plan_sides", "trace_side", "attach_pivot_G", "is_internal"]
 

@@ -1,0 +1,36 @@
+"""Sense one closed slice: the simulator and the planner put together.
+
+This is the only module that sees both rooms of core2d: it builds the
+simulated probe (:mod:`core2d.sim`, which owns the geometry) and hands it to
+the planner (:mod:`core2d.planner.run`, which sees sensor readings only).
+"""
+from __future__ import annotations
+
+from core2d.planner.run import explore
+from core2d.result import SliceResult
+from core2d.sim.probe import Probe
+
+__all__ = ["sense_slice"]
+
+
+def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
+                max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
+    """Run the pulling-motion algorithm on one closed slice.
+
+    Parameters
+    ----------
+    contact : ContactModel -- the slice's ray-cast backend.
+    workspace : ((2,) float, float) -- centre and radius of a circle that
+        contains the slice (all the robot knows beforehand).
+    eps : float -- the paper's epsilon (W2 threshold, smoothness scale).
+    probe_length : float, optional -- default 2 x workspace diameter.
+    tol : float, optional -- contact resolution, default eps / 20.
+    max_motions, max_areas : int -- budgets; when hit, the areas still
+        unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
+
+    Returns
+    -------
+    SliceResult in the slice's 2D frame.
+    """
+    probe = Probe(contact, workspace, eps, probe_length, tol)
+    return explore(probe, eps, max_motions, max_areas, bootstrap_count)

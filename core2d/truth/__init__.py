@@ -1,0 +1,1 @@
+"""Ground truth of a slice: exact reachability and metrics. Never seen by the planner."""

@@ -11,9 +11,9 @@ from core2d.truth.reachability import reachable_samples
 from core2d.result import SenseStats, SliceResult
 
 try:
-    from polygen import keyhole
+    from polygen import keyhole, slotted_box
 except ImportError:  # tests/ imported as a package
-    from tests.polygen import keyhole
+    from tests.polygen import keyhole, slotted_box
 
 # keyhole(3): box [-50, 50]^2, neck |x| < 3 (20 < y < 50), chamber |x| < 30, |y| < 20.
 # Reachable (tests/test_reachability.py): box sides, neck walls, floor |x| < 11.
@@ -75,11 +75,40 @@ def test_w1_offset_from_the_contour(tol, factor, expect):
     assert m["hausdorff_true_reachable_to_detected"] == pytest.approx(gap, rel=0.01)
 
 
+def test_contour_behind_a_w2_chord_is_approximated():
+    """§3.1: L_A^B stands for C_A^B when Dist(A, B) < eps: a slot narrower
+    than eps closed by a W2 chord counts as covered. The chord reversed would
+    lid the whole outside: it credits nothing and is counted as long."""
+    width = 0.8
+    loops = slotted_box(width, 20.0)
+    outside = np.array([[width / 2, 50], [50, 50], [50, -50], [-50, -50], [-50, 50], [-width / 2, 50]])
+    chord = np.array([[-width / 2, 50.0], [width / 2, 50.0]])  # material on the right: into the slot
+    bare = metrics(loops, eps=1.0, w1=[outside])
+    assert bare["coverage"] < 0.92  # the slot walls are reachable and not detected
+    m = metrics(loops, eps=1.0, w1=[outside], w2=[chord])
+    assert m["w2_arc_length"] == pytest.approx(40 + width, abs=2 * m["spacing"])
+    assert m["coverage"] == 1.0 and m["w2_long_arcs"] == 0
+    rev = metrics(loops, eps=1.0, w1=[outside], w2=[chord[::-1]])
+    assert rev["w2_long_arcs"] == 1 and rev["w2_arc_length"] == 0.0
+    assert rev["coverage"] < 0.92
+
+
+def test_coincident_ends_make_no_arc():
+    """Two ends one point apart in the reverse order do not lid the whole loop."""
+    p = np.array([20.0, -50.0])
+    m = metrics([BOX], eps=1.0, w2=[np.stack([p, p + [1e-9, 0]])], w3=[np.stack([p, p + [1e-9, 0]])])
+    assert m["w2_arc_length"] == 0.0 and m["w3_lidded_length"] == 0.0
+    assert m["w3_soundness"] == 1.0
+
+
 def test_w2_segments_count():
     pts = np.linspace(BOX[0], BOX[1], 201)  # bottom side in 200 chords of 0.5 < eps
     w2 = [np.stack([p, q]) for p, q in zip(pts[:-1], pts[1:])]
     m = metrics([BOX], eps=1.0, w2=w2)
     assert m["w2_count"] == 200 and m["w1_count"] == 0
+    assert m["w2_long_arcs"] == 200  # drawn counter-clockwise: reversed chords
+    right_way = metrics([BOX], eps=1.0, w2=[seg[::-1] for seg in w2])
+    assert right_way["w2_long_arcs"] == 0 and right_way["coverage"] == pytest.approx(m["coverage"])
     # the bottom side and, within tol of it, the lowest tol of both sides
     assert m["coverage"] == pytest.approx((100 + 2 * m["tol"]) / 400, abs=1e-3)
     assert m["precision"] == 1.0
@@ -94,21 +123,27 @@ def test_nothing_detected():
     assert m["hausdorff_true_reachable_to_detected"] is None
 
 
-@pytest.mark.parametrize("lids,length,soundness,unsound", [
-    ([RIGHT_LID], LID_ARC, 1.0, 0),
-    ([LEFT_LID], LID_ARC, 1.0, 0),
-    ([RIGHT_LID, LEFT_LID], 2 * LID_ARC, 1.0, 0),
-    ([RIGHT_LID[::-1]], KEY_LENGTH - LID_ARC, LID_ARC / (KEY_LENGTH - LID_ARC), 1),  # the long way
-    ([np.array([[-5, -20], [5, -20]])], 10, 0.0, 1),  # floor under the neck: reachable
-    ([np.array([[5, -20], [-5, -20]])], KEY_LENGTH - 10, 172 / (KEY_LENGTH - 10), 1),
+@pytest.mark.parametrize("lids,length,unsound,hidden", [
+    ([RIGHT_LID], LID_ARC, 0, 0.0),
+    ([LEFT_LID], LID_ARC, 0, 0.0),
+    ([RIGHT_LID, LEFT_LID], 2 * LID_ARC, 0, 0.0),
+    ([RIGHT_LID[::-1]], KEY_LENGTH - LID_ARC, 1, KEY_REACHABLE - 2),  # the long way
+    ([np.array([[-5, -20], [5, -20]])], 10, 1, 8.0),  # floor under the neck: reachable
+    ([np.array([[5, -20], [-5, -20]])], KEY_LENGTH - 10, 1, KEY_REACHABLE - 10 - 2),
+    # reachable floor 10.5 < x < 11 under the lid, all of it within eps of A: sound
+    ([np.array([[10.5, -20], [3, 20]])], LID_ARC + 0.5, 0, 0.0),
+    # reachable floor 9 < x < 11: the part farther than eps from A makes it unsound
+    ([np.array([[9.0, -20], [3, 20]])], LID_ARC + 2, 1, 1.0),
 ])
-def test_w3_lids_on_the_keyhole(lids, length, soundness, unsound):
+def test_w3_lids_on_the_keyhole(lids, length, unsound, hidden):
     m = metrics(KEY, eps=1.0, w3=lids)
     sp = m["spacing"]
     assert m["w3_count"] == len(lids) and m["w3_cross_loop"] == 0 and m["w3_off_contour"] == 0
     assert m["w3_lidded_length"] == pytest.approx(length, abs=2 * sp * len(lids))
-    assert m["w3_soundness"] == pytest.approx(soundness, abs=4 * sp / length)
     assert m["w3_unsound_count"] == unsound
+    assert m["w3_soundness"] == 1 - unsound / len(lids)
+    # reachable contour under the lids, less eps at each touched end
+    assert m["w3_hidden_reachable_length"] == pytest.approx(hidden, abs=2 * sp)
 
 
 @pytest.mark.parametrize("lid,length", [
@@ -122,6 +157,7 @@ def test_lid_arcs_follow_material_on_the_right(lid, length):
     assert m["w3_lidded_length"] == pytest.approx(length, abs=2 * m["spacing"])
     on_hole = np.abs(lid).max() <= 10
     assert m["w3_soundness"] == (1.0 if on_hole else 0.0)
+    assert (m["w3_hidden_reachable_length"] == 0) == on_hole
     assert m["hole_length"] == pytest.approx(80.0)
 
 
@@ -129,7 +165,8 @@ def test_cross_loop_and_off_contour_lids():
     cross = np.array([[50, 0], [10, 0]], dtype=float)
     m = metrics([BOX, HOLE], eps=1.0, w3=[cross, np.array([[-10, 0], [0, 10]], dtype=float)])
     assert m["w3_cross_loop"] == 1 and m["w3_unsound_count"] == 1
-    assert m["w3_soundness"] == pytest.approx(60 / (60 + 40), abs=0.01)
+    assert m["w3_soundness"] == 0.5  # a bridge between two loops is unsound, the hole lid sound
+    assert m["w3_hidden_reachable_length"] == 0.0
     tol = m["tol"]
     off = metrics([BOX, HOLE], eps=1.0, w3=[np.array([[-10 + 2 * tol, 0], [0, 10 - 0.5 * tol]])])
     assert off["w3_off_contour"] == 1 and off["w3_lidded_length"] == pytest.approx(60, abs=0.5)
@@ -168,7 +205,7 @@ def test_total_metrics_weighting():
     assert t["precision"] == pytest.approx((full["precise_length"] + floor["precise_length"]) / det)
     assert t["precision"] < 0.9
     assert t["precision"] != pytest.approx(np.mean([full["precision"], floor["precision"], 1.0]))
-    assert t["w3_soundness"] == pytest.approx(2 * LID_ARC / KEY_LENGTH, abs=0.01)
+    assert t["w3_soundness"] == 0.5  # one sound lid, one the long way round
     assert t["w3_count"] == 2 and isinstance(t["w3_count"], int)
     assert t["motions"] == 7 and t["rays"] == 30 and t["joint_path"] == pytest.approx(3.5)
     assert t["budget_hit"] is True and t["budget_hits"] == 1 and t["seconds"] == pytest.approx(1.5)

@@ -9,23 +9,27 @@ Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
   stands for its piece of contour length; reachability is exact per sample
   (:func:`core2d.truth.reachability.reachable`);
 * **coverage** -- length of reachable samples within ``tol`` of W1 u W2,
-  over the reachable length. ``eps / 2`` is the natural tolerance: every
-  point of a W2 chord ``L_A^B`` with ``Dist(A, B) < eps`` lies within
-  ``eps / 2`` of ``A`` or ``B``, and the eps/2-circle assumption of §3.2 is
-  what lets the chord stand for ``C_A^B``;
+  or behind a W2 chord (on the arc ``C_A^B`` of a W2 segment: §3.1 regards
+  ``L_A^B`` as the approximate surface of ``C_A^B`` when Dist(A, B) < eps),
+  over the reachable length (a W2 "arc" longer than the rest of its loop is
+  a reversed chord and credits nothing: ``w2_long_arcs`` counts them).
+  ``eps / 2`` is the natural tolerance: every
+  point of a W2 chord with ``Dist(A, B) < eps`` lies within ``eps / 2`` of
+  ``A`` or ``B``;
 * **precision** -- length share of the detected geometry (W1 polylines and
   W2 segments, cut into pieces <= ``spacing``) within ``tol`` of the true
   contour; the two directed Hausdorff distances use the same samples
   (plus the detected vertices), so they are exact to ``spacing / 2``;
-* **W3 soundness** -- a lid ``(A, B)`` covers ``C_A^B``: A and B are
+* **W3 soundness, per lid** -- a lid ``(A, B)`` covers ``C_A^B``: A and B are
   projected to the nearest contour point and the arc runs from A to B with
   the material on the right. Loops keep the material on their left (outer
   CCW, holes CW), so ``C_A^B`` is the arc of *decreasing* loop arc length
-  from A to B, on outer loops and holes alike. ``w3_soundness`` = truly
-  unreachable lidded length / (lidded length + chord length of lids whose
-  ends project to different loops); those lids are counted in
-  ``w3_cross_loop`` and are unsound, as is a lid with more than ``tol`` of
-  reachable contour under it (``w3_unsound_count``).
+  from A to B, on outer loops and holes alike. A lid is **sound** when no
+  reachable contour farther than ``eps`` from both A and B lies under it
+  (the paper's resolution is eps) and its ends lie on one loop (it is not a
+  bridge between two islands). ``w3_soundness`` = sound lids / lids;
+  ``w3_hidden_reachable_length`` is the reachable length farther than eps
+  from the ends under all lids, ``w3_cross_loop`` counts the bridges.
 
 Ratios whose denominator is 0 are 1.0 (nothing to miss, nothing wrong);
 Hausdorff distances with an empty side are ``None``.
@@ -65,7 +69,7 @@ def _nearest(tree, points) -> tuple[np.ndarray, np.ndarray]:
     return item, d
 
 
-def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
+def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> dict:
     """Contour arcs ``C_A^B`` under segments ``(A, B)`` (W3 lids or unknown areas).
 
     Parameters
@@ -73,13 +77,16 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     loops : list of (k, 2) float -- the true contour.
     lids : list of (2, 2) float -- segments A -> B.
     samples : ContourSamples -- samples of ``loops``.
+    resolution : float -- ends closer than this along the loop, in the
+        reverse order, are one point (empty arc), not a walk round the loop.
 
     Returns
     -------
     dict with ``mask`` (m,) bool (samples under some same-loop lid),
     ``cross_loop`` (n,) bool, ``offset`` (n,) float (largest distance of A or
     B to the contour), ``arc_length`` (n,) float (0 for cross-loop lids) and
-    ``member`` (n, m) bool (samples under each lid). Without any contour
+    ``member`` (n, m) bool (samples under each lid), ``loop`` (n,) int (loop
+    of A, -1 without contour). Without any contour
     every lid counts as cross-loop, with an infinite offset.
 
     Examples
@@ -93,6 +100,7 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     lids = np.asarray(lids, dtype=np.float64).reshape(-1, 2, 2)
     n, m = len(lids), len(samples.points)
     out = dict(mask=np.zeros(m, dtype=bool), cross_loop=np.zeros(n, dtype=bool),
+               loop=np.full(n, -1, dtype=np.int64),
                offset=np.zeros(n), arc_length=np.zeros(n), member=np.zeros((n, m), dtype=bool))
     if n == 0:
         return out
@@ -113,9 +121,12 @@ def lid_arcs(loops, lids, samples: ContourSamples) -> dict:
     lp = loop[edge].reshape(n, 2)
     out["offset"] = dist.reshape(n, 2).max(axis=1)
     out["cross_loop"] = lp[:, 0] != lp[:, 1]
+    out["loop"] = lp[:, 0]
     for i in np.flatnonzero(~out["cross_loop"]):
         length = samples.loop_lengths[lp[i, 0]]
         arc = (s[i, 0] - s[i, 1]) % length  # walk from A with decreasing s
+        if length - arc <= resolution:  # A, B one point at this resolution: no arc,
+            arc = 0.0  # not the whole loop the other way round
         under = (samples.loop == lp[i, 0]) & ((s[i, 0] - samples.s) % length <= arc)
         out["member"][i] = under
         out["arc_length"][i] = arc
@@ -163,20 +174,27 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
     else:
         d_true = np.full(len(w), np.inf)
         dl = d_det = d_det_pieces = np.zeros(0)
-    covered = reach & (d_true <= tol)
+    w2_arcs = lid_arcs(loops, result.w2, samp, resolution=spacing)
+    # an arc longer than the rest of its loop is a reversed chord, not a W2 area
+    w2_long = w2_arcs["arc_length"] > 0.5 * samp.loop_lengths[w2_arcs["loop"]]
+    behind_w2 = w2_arcs["member"][~w2_long].any(axis=0)
+    covered = reach & ((d_true <= tol) | behind_w2)
     reachable_length = float(w[reach].sum())
     detected_length = float(dl.sum())
 
-    # W3 lids and unknown areas
-    lids = lid_arcs(loops, result.w3, samp)
-    unk = lid_arcs(loops, result.unknown, samp)
-    chords = np.array([np.hypot(*np.subtract(*np.asarray(lid, dtype=float).reshape(2, 2)))
-                       for lid in result.w3])
-    cross_length = float(chords[lids["cross_loop"]].sum()) if len(chords) else 0.0
+    # W3 lids (per-lid soundness) and unknown areas
+    lids = lid_arcs(loops, result.w3, samp, resolution=spacing)
+    unk = lid_arcs(loops, result.unknown, samp, resolution=spacing)
+    ends = np.asarray(result.w3, dtype=np.float64).reshape(-1, 2, 2)
+    far = np.ones((len(ends), len(w)), dtype=bool)
+    for k in range(2):  # farther than eps from both ends of each lid
+        far &= np.hypot(*(samp.points[None] - ends[:, k, None]).transpose(2, 0, 1)) > eps
+    hidden = lids["member"] & far & reach  # (n, m): reachable, behind a lid, not at its ends
+    hidden_length = hidden.astype(float) @ w
+    unsound = lids["cross_loop"] | (hidden_length > 0)
+    chords = np.hypot(*(ends[:, 1] - ends[:, 0]).T)
     lidded = float(w[lids["mask"]].sum())
     lid_unreachable = float(w[lids["mask"] & ~reach].sum())
-    per_lid_reachable = lids["member"].astype(float) @ (w * reach)
-    unsound = lids["cross_loop"] | (per_lid_reachable > tol)
 
     out = {
         "eps": float(eps),
@@ -196,15 +214,18 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
         "hausdorff_detected_to_true": float(d_det.max()) if len(d_det) and len(a) else None,
         "hausdorff_true_reachable_to_detected": (float(d_true[reach].max())
                                                  if len(da) and reach.any() else None),
+        "w2_arc_length": float(w[behind_w2].sum()),
+        "w2_long_arcs": int(w2_long.sum()),
         "w3_count": len(result.w3),
         "w3_lidded_length": lidded,
         "w3_unreachable_length": lid_unreachable,
         "w3_reachable_length": lidded - lid_unreachable,
+        "w3_hidden_reachable_length": float(w[hidden.any(axis=0)].sum()),
         "w3_cross_loop": int(lids["cross_loop"].sum()),
-        "w3_cross_loop_length": cross_length,
+        "w3_cross_loop_length": float(chords[lids["cross_loop"]].sum()),
         "w3_off_contour": int((lids["offset"] > tol).sum()),
         "w3_unsound_count": int(unsound.sum()),
-        "w3_soundness": (lid_unreachable / (lidded + cross_length)) if lidded + cross_length > 0 else 1.0,
+        "w3_soundness": float(1.0 - unsound.mean()) if len(unsound) else 1.0,
         "unknown_count": len(result.unknown),
         "unknown_length": float(w[unk["mask"]].sum()),
         "unknown_reachable_length": float(w[unk["mask"] & reach].sum()),
@@ -216,11 +237,11 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
 def total_metrics(metrics: list[dict]) -> dict:
     """Aggregate :func:`slice_metrics` dicts over slices.
 
-    Lengths and counters are summed, ``coverage``, ``precision`` and
-    ``w3_soundness`` recomputed from the summed lengths (so they are length
-    weighted), Hausdorff distances (and eps, tol, spacing) are maxima over
+    Lengths and counters are summed, ``coverage`` and ``precision``
+    recomputed from the summed lengths (so they are length weighted), Hausdorff distances (and eps, tol, spacing) are maxima over
     the slices that have one, ``budget_hit`` is any and ``budget_hits`` the
-    number of slices that hit the budget.
+    number of slices that hit the budget; ``w3_soundness`` is the share of
+    sound lids over all slices.
 
     Examples
     --------
@@ -248,7 +269,7 @@ def total_metrics(metrics: list[dict]) -> dict:
         if num in out or den in out:
             n, d = out.get(num, 0.0), out.get(den, 0.0)
             out[k] = float(n / d) if d > 0 else 1.0
-    if "w3_unreachable_length" in out:
-        den = out.get("w3_lidded_length", 0.0) + out.get("w3_cross_loop_length", 0.0)
-        out["w3_soundness"] = float(out["w3_unreachable_length"] / den) if den > 0 else 1.0
+    if "w3_count" in out:
+        n = out["w3_count"]
+        out["w3_soundness"] = float(1.0 - out.get("w3_unsound_count", 0) / n) if n else 1.0
     return out

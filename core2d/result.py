@@ -49,13 +49,20 @@ class AreaRecord:
 
 @dataclass
 class SenseStats:
-    """Cost counters of one slice (the ``stats`` object of sensing.json)."""
+    """Cost counters of one slice (the ``stats`` object of sensing.json).
+
+    ``pushes`` counts trace steps executed in sliding contact with v.t > 0;
+    ``push_attempts`` counts the steps where the planner's commanded v would
+    have pushed and the guard stopped the trace (Case 3, §4.3.2): the honest
+    measure of the pulling strategy, since the guard keeps ``pushes`` at 0.
+    """
 
     motions: int = 0
     rays: int = 0
     casts: int = 0
     joint_path: float = 0.0
     pushes: int = 0
+    push_attempts: int = 0
     areas: int = 0
     escapes: int = 0
     budget_hit: bool = False
@@ -68,6 +75,7 @@ class SenseStats:
             "rays": int(self.rays),
             "joint_path": float(self.joint_path),
             "pushes": int(self.pushes),
+            "push_attempts": int(self.push_attempts),
             "areas": int(self.areas),
             "escapes": int(self.escapes),
             "budget_hit": bool(self.budget_hit),

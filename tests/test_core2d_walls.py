@@ -21,7 +21,7 @@ from core2d import sense_slice
 
 CORE2D = pathlib.Path(__file__).resolve().parents[1] / "core2d"
 FORBIDDEN = {"trimesh", "embreex", "manifold3d", "pyvista", "vtk", "slicer", "meshes", "recon3d"}
-SHARED = {"core2d.planar", "core2d.readings", "core2d.result"}
+SHARED = {"core2d.planar", "core2d.readings", "core2d.result", "core2d.visibility"}
 # room -> core2d modules it may import besides its own room and SHARED
 ALLOWED = {"sim": set(), "planner": set(), "truth": set()}
 SIMULATOR = {"core2d.sim.probe", "core2d.sim.compliance"}

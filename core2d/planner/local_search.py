@@ -114,23 +114,25 @@ def _crosses(p, tips, a, b) -> np.ndarray:
     return (d1 * d2 < 0) & (d3 * d4 < 0)
 
 
-def _tip_bound(probe, G, a, b, theta, rot_dir, limit):
+def _tip_bound(probe, G, a, b, theta, rot_dir, limit, chunk=4096):
     """Theorem 3: largest swing (<= limit) keeping the tip inside
     T_i^(j) cap V_i cap G_i, or beyond it only across L_{A_i}^{B_i}
-    (checked on the swept arc; G is G_i buffered by tol)."""
+    (checked on the swept arc at the fan spacing, ``chunk`` tips at a time;
+    G is G_i buffered by tol)."""
     if limit <= 0:
         return 0.0
     n = max(4, int(limit / probe.fan_step))
-    angs = theta + rot_dir * np.linspace(0, limit, n + 1)[1:]
-    tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
-    free_side = in_V(tips, a, b)
-    inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])
-    through_lid = _crosses(probe.joint, tips, a, b)
-    bad = ~((free_side & inside) | (~free_side & through_lid))
-    if not bad.any():
-        return limit
-    i = int(np.argmax(bad))
-    return float(limit * i / n)
+    for lo in range(0, n, chunk):
+        k = np.arange(lo + 1, min(n, lo + chunk) + 1)
+        angs = theta + rot_dir * limit * k / n
+        tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
+        free_side = in_V(tips, a, b)
+        inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])
+        through_lid = _crosses(probe.joint, tips, a, b)
+        bad = ~((free_side & inside) | (~free_side & through_lid))
+        if bad.any():
+            return float(limit * (lo + int(np.argmax(bad))) / n)
+    return limit
 
 
 def bisection(probe, area, G, reading, max_iter=60):

@@ -97,7 +97,8 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             event = "reached-body"  # a part of the probe other than the tip
             break
         if v @ t > 0:
-            if guard_push:
+            if guard_push:  # Case 3: the guard intercepts a pushing step
+                probe.stats.push_attempts += 1
                 event = "pushing"
                 break
             probe.stats.pushes += 1

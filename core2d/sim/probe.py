@@ -88,18 +88,38 @@ class Probe:
 
     # --------------------------------------------------------------- sensing
     def sense(self, event="done", **extra) -> Reading:
-        """Read the tactile skin and the torque sensor at the current pose."""
+        """Read the tactile skin and the torque sensor at the current pose.
+
+        Tactile skin: a ray from the tip along t (reach ``tol``) and the two
+        rays of the torque check below; contacts on the probe (distance from
+        the joint <= L) are reported with their face.
+
+        Torque sensor (§3.2): is a small rotation about the joint, moving the
+        tip sideways by ``tol``, blocked? The probe is held in contact, so
+        the check is made with the tip pressed onto the surface it touches:
+        the rotated ray from the joint reaches as far as the tip's contact
+        (L + gap, the gap being the tip's stand-off along t). A rotation is
+        blocked when the rotated ray meets the surface before that depth: the
+        surface rises towards the joint on that side (a slope, Fig. 10(b), or
+        the other face of a concave corner within ``tol`` of the tip,
+        Fig. 10(a)). On a surface normal to the probe the tip's arc lifts off
+        it and both rotations are free. Without a tip contact only contacts
+        on the probe itself (distance <= L) block.
+        """
         alpha = self.tol / self.length
         t = self.direction
+        L = self.length
         origins = np.stack([self.joint, self.joint, self.tip])
         dirs = np.stack([unit(self.theta + alpha), unit(self.theta - alpha), t])
-        d, p = self._cast(origins, dirs, np.array([self.length, self.length, self.tol]))
+        d, p = self._cast(origins, dirs, np.array([L + self.tol, L + self.tol, self.tol]))
+        tip_touch = bool(np.isfinite(d[2]))
+        reach = L + (d[2] - 1e-3 * self.tol if tip_touch else 0.0)
         contacts = []
-        if np.isfinite(d[2]):
-            contacts.append(Contact(p[2], TIP, self.length))
+        if tip_touch:
+            contacts.append(Contact(p[2], TIP, L))
         for k, face in ((0, RIGHT), (1, LEFT)):
-            if np.isfinite(d[k]):
-                f = TIP if self.length - d[k] <= self.tip_zone else face
+            if d[k] <= L:
+                f = TIP if L - d[k] <= self.tip_zone else face
                 if not any(np.linalg.norm(c.point - p[k]) <= self.tip_zone for c in contacts):
                     contacts.append(Contact(p[k], f, float(d[k])))
         primary = extra.pop("primary", None)
@@ -111,8 +131,8 @@ class Probe:
             joint=self.joint.copy(),
             direction=t,
             contacts=tuple(contacts),
-            blocked_ccw=bool(np.isfinite(d[0])),
-            blocked_cw=bool(np.isfinite(d[1])),
+            blocked_ccw=bool(d[0] <= reach),
+            blocked_cw=bool(d[1] <= reach),
             event=event,
             **extra,
         )
@@ -124,13 +144,22 @@ class Probe:
         return Contact(point, RIGHT if rot_dir > 0 else LEFT, float(dist))
 
     def _offsets(self, max_angle):
-        """Angular offsets of a search: fine first (2 ang_tol), growing 4x per
-        window of 8 rays up to the eps/4 fan spacing, then constant. Cached
-        per ``max_angle`` (they depend on nothing else)."""
+        """Angular offsets of a search, window by window: fine first
+        (2 ang_tol), growing 4x per window of 8 rays up to the eps/4 fan
+        spacing, then windows of 8 ... 8192 rays at that spacing, then windows
+        of 8192 until ``max_angle``. The head is cached per ``max_angle``;
+        the tail is generated lazily, so no window holds more than 8192 rays
+        however small eps is."""
         key = float(max_angle)
-        if key not in self._offset_cache:
-            self._offset_cache[key] = self._make_offsets(key)
-        return self._offset_cache[key]
+        head = self._offset_cache.get(key)
+        if head is None:
+            head = self._offset_cache[key] = self._make_offsets(key)
+        yield from head
+        pos, cap = float(head[-1][-1]) if head else 0.0, _WINDOWS[-1]
+        while pos < max_angle:
+            ks = np.minimum(pos + self.fan_step * np.arange(1, cap + 1), max_angle)
+            yield ks
+            pos = float(ks[-1])
 
     def _make_offsets(self, max_angle):
         out, pos, step = [], 0.0, min(self.fan_step, 2 * self.ang_tol)
@@ -144,8 +173,6 @@ class Probe:
             ks = pos + self.fan_step * np.arange(1, size + 1)
             out.append(ks)
             pos = ks[-1]
-        if pos < max_angle:
-            out.append(np.arange(pos + self.fan_step, max_angle + self.fan_step, self.fan_step))
         return [np.minimum(w, max_angle) for w in out]
 
     def _search(self, joint, theta0, rot_dir, max_angle, want_blocked=True):
@@ -258,16 +285,18 @@ class Probe:
         return self.sense("done" if found is None else "contact", angle=new_back - back)
 
     def _search_from(self, origin, theta0, rot_dir, max_angle):
-        """Like :meth:`_search` for rays from ``origin`` (offset by tol)."""
+        """Like :meth:`_search` for rays from ``origin`` (offset by tol), at
+        the fan spacing, in windows of at most 8192 rays."""
         step = self.fan_step
         n = max(1, int(np.ceil(max_angle / step)))
-        ang = theta0 + rot_dir * np.minimum(np.arange(1, n + 1) * step, max_angle)
-        dirs = unit(ang)
-        d, _ = self._cast(origin + self.tol * dirs, dirs, self.length)
-        if not np.isfinite(d).any():
-            return None
-        i = int(np.argmax(np.isfinite(d)))
-        return (i * step,)
+        for lo in range(0, n, _WINDOWS[-1]):
+            k = np.arange(lo + 1, min(n, lo + _WINDOWS[-1]) + 1)
+            dirs = unit(theta0 + rot_dir * np.minimum(k * step, max_angle))
+            d, _ = self._cast(origin + self.tol * dirs, dirs, self.length)
+            hit = np.isfinite(d)
+            if hit.any():
+                return ((lo + int(np.argmax(hit))) * step,)
+        return None
 
     def translate(self, v, dist) -> Reading:
         """Translate the joint along unit ``v`` by up to ``dist`` keeping t.

@@ -37,6 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from core2d.visibility import free_gaps
+
 __all__ = [
     "ContourSamples",
     "as_loops",
@@ -161,91 +163,16 @@ def sample_contour(loops, spacing: float) -> ContourSamples:
     )
 
 
-def _segmented_gap(row, st, en, nrows, width, circular=False):
-    """Widest open gap of [0, width] left by closed arcs ``[st, en]`` of points ``row``.
-
-    ``circular`` joins the gaps at both ends. Returns (nrows,) float.
-    """
-    order = np.argsort(row, kind="stable")
-    row, st, en = row[order], st[order], en[order]
-    counts = np.bincount(row, minlength=nrows)
-    pos = np.arange(len(row)) - (np.cumsum(counts) - counts)[row]
-    shape = (nrows, max(int(counts.max(initial=0)), 1))
-    s = np.full(shape, np.inf)  # padding: empty arcs, sorted last
-    e = np.full(shape, -np.inf)
-    s[row, pos], e[row, pos] = st, en
-    order = np.argsort(s, axis=1)
-    s = np.minimum(np.take_along_axis(s, order, axis=1), width)  # padding opens no gap
-    e = np.maximum(np.maximum.accumulate(np.take_along_axis(e, order, axis=1), axis=1), 0.0)
-    lead, trail = s[:, 0], width - e[:, -1]
-    gap = np.maximum(lead, trail)
-    if shape[1] > 1:
-        gap = np.maximum(gap, (s[:, 1:] - e[:, :-1]).max(axis=1))
-    if circular:
-        gap = np.maximum(gap, lead + trail)
-    return np.clip(gap, 0.0, width)
-
-
 def _free_chunk(p, own, a, b, atol):
     """Widest free angle for points ``p`` (c, 2) on edges ``own`` (c,)."""
-    c = len(p)
-    # does p sit strictly inside its own edge (not at a vertex)?
     ea, eb = a[own], b[own]
     ulen = np.hypot(*(eb - ea).T)
+    # does p sit strictly inside its own edge (not at a vertex)?
     inner = (np.hypot(*(p - ea).T) > atol) & (np.hypot(*(p - eb).T) > atol) & (ulen > 0)
     safe = np.where(ulen > 0, ulen, 1.0)
-    tx = np.where(inner, (eb - ea)[:, 0] / safe, 1.0)
-    ty = np.where(inner, (eb - ea)[:, 1] / safe, 0.0)
-    # cross(t, v) >= 0 at both ends (v = end - p): the edge lies in the closed
-    # material half-plane (material is on the left) and cannot block an
-    # outward ray. Culled densely, the rest is done on the kept pairs only.
-    k = (tx * p[:, 1] - ty * p[:, 0])[:, None]
-    ca = np.outer(tx, a[:, 1]) - np.outer(ty, a[:, 0]) - k
-    cb = np.outer(tx, b[:, 1]) - np.outer(ty, b[:, 0]) - k
-    keep = (ca < 0) | (cb < 0)
-    keep[~inner] = True
-    keep[np.arange(c), own] = False
-    row, col = np.nonzero(keep)
-    del keep, k, ca, cb
-    # edges containing p (distance <= atol) block nothing
-    pr = p[row]
-    va, vb = a[col] - pr, b[col] - pr
-    e = vb - va
-    l2 = np.einsum("ij,ij->i", e, e)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.nan_to_num(np.clip(-np.einsum("ij,ij->i", va, e) / l2, 0.0, 1.0))
-    far = np.hypot(*(va + t[:, None] * e).T) > atol
-    row, va, vb = row[far], va[far], vb[far]
-    txr, tyr = tx[row], ty[row]
-    # psi: angle measured clockwise from the edge direction t; the outward
-    # side of the edge is psi in (0, pi), the material side [-pi, 0]
-    psa = -np.arctan2(txr * va[:, 1] - tyr * va[:, 0], txr * va[:, 0] + tyr * va[:, 1])
-    psb = -np.arctan2(txr * vb[:, 1] - tyr * vb[:, 0], txr * vb[:, 0] + tyr * vb[:, 1])
-    lo = np.minimum(psa, psb)
-    hi = np.maximum(psa, psb)
-    wrap = hi - lo > np.pi  # the short arc crosses the +-pi cut
-    out = np.empty(c)
-    rin = inner[row]
-    # inner points: clip arcs to the outward half-plane [0, pi]
-    st = np.where(wrap, np.maximum(hi, 0.0), np.maximum(lo, 0.0))
-    en = np.where(wrap, np.pi, hi)
-    m = rin & (en > st)
-    out[inner] = _segmented_gap(np.cumsum(inner)[row[m]] - 1, st[m], en[m], int(inner.sum()), np.pi)
-    if (~inner).any():  # points at vertices: the whole circle, arcs split at the cut
-        vidx = np.cumsum(~inner) - 1
-        m = ~rin
-        r1 = vidx[row[m]]
-        st1 = np.where(wrap[m], hi[m], lo[m]) + np.pi
-        en1 = np.where(wrap[m], np.pi, hi[m]) + np.pi
-        w = m.copy()
-        w[m] = wrap[m]
-        r2 = vidx[row[w]]
-        st2 = np.zeros(int(w.sum()))
-        en2 = lo[w] + np.pi
-        nv = int((~inner).sum())
-        rr, ss, ee = np.r_[r1, r2], np.r_[st1, st2], np.r_[en1, en2]
-        out[~inner] = _segmented_gap(rr, ss, ee, nv, 2 * np.pi, circular=True)
-    return out
+    tangents = (eb - ea) / safe[:, None]
+    width, _ = free_gaps(p, tangents, a, b, inner=inner, own=own, atol=atol)
+    return width
 
 
 def _locate(a, b, points):

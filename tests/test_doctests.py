@@ -1,4 +1,4 @@
-"""The slicer modules' docstring examples run (they are the documentation)."""
+"""Docstring examples run (they are the documentation)."""
 from __future__ import annotations
 
 import doctest
@@ -15,6 +15,10 @@ MODULES = [
     "slicer.exact",
     "slicer.slices",
     "slicer.agreement",
+    "core2d.planar",
+    "core2d.visibility",
+    "core2d.truth.reachability",
+    "core2d.truth.metrics",
 ]
 
 

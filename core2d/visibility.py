@@ -1,0 +1,163 @@
+"""Free directions from points among segments, by exact angular intervals.
+
+Shared maths: :mod:`core2d.truth.reachability` asks it about the true
+contour (is a contour point reachable?), the planner about the contour it
+has itself recorded (can any line from F still cross this lid?). Nothing
+here knows where the segments came from.
+
+Seen from a point ``p``, every segment not containing ``p`` blocks the
+*closed* arc of directions it subtends (a segment always subtends less than
+pi). For an *inner* point only the open half-plane of directions on the
+right of its tangent ``t`` counts (for a contour point: the outward side,
+material on the left), so the arcs are clipped to it; otherwise the whole
+circle is used and arcs crossing the +-pi cut are split in two. The answer
+is the widest open gap the union of blocked arcs leaves, and the direction
+at its middle.
+
+Angles ``psi`` are measured clockwise from ``t`` (inner points) or from +x
+shifted by pi (full circle); :func:`free_gaps` returns world angles.
+
+Examples
+--------
+>>> seg_a, seg_b = np.array([[-1.0, 1.0]]), np.array([[2.0, 1.0]])  # a roof above
+>>> # tangent -x: the upper half-plane; the roof blocks 26.6 .. 135 degrees
+>>> w, ang = free_gaps(np.zeros((1, 2)), np.array([[-1.0, 0.0]]), seg_a, seg_b)
+>>> round(float(np.degrees(w[0])), 3), round(float(np.degrees(ang[0])), 3)
+(45.0, 157.5)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["free_gaps", "segmented_gap"]
+
+
+def segmented_gap(row, st, en, nrows, width, circular=False):
+    """Widest open gap of [0, width] left by closed arcs ``[st, en]`` of rows ``row``.
+
+    Parameters
+    ----------
+    row : (k,) int -- which point each arc belongs to.
+    st, en : (k,) float -- arc ends, within [0, width].
+    nrows : int -- number of points.
+    width : float -- the range of directions (pi or 2 pi).
+    circular : bool -- join the gaps at both ends (full circle).
+
+    Returns
+    -------
+    gap : (nrows,) float -- widest gap.
+    mid : (nrows,) float -- position of its middle in [0, width).
+    """
+    order = np.argsort(row, kind="stable")
+    row, st, en = row[order], st[order], en[order]
+    counts = np.bincount(row, minlength=nrows)
+    pos = np.arange(len(row)) - (np.cumsum(counts) - counts)[row]
+    shape = (nrows, max(int(counts.max(initial=0)), 1))
+    s = np.full(shape, np.inf)  # padding: empty arcs, sorted last
+    e = np.full(shape, -np.inf)
+    s[row, pos], e[row, pos] = st, en
+    order = np.argsort(s, axis=1)
+    s = np.minimum(np.take_along_axis(s, order, axis=1), width)  # padding opens no gap
+    e = np.maximum(np.maximum.accumulate(np.take_along_axis(e, order, axis=1), axis=1), 0.0)
+    lead, trail = s[:, 0], width - e[:, -1]
+    # candidate gaps: before the first arc, after the last, between arcs, wrapped
+    cand = [lead, trail]
+    mids = [lead / 2, e[:, -1] + trail / 2]
+    if shape[1] > 1:
+        inner = s[:, 1:] - e[:, :-1]
+        k = np.argmax(inner, axis=1)
+        r = np.arange(nrows)
+        cand.append(inner[r, k])
+        mids.append(e[r, k] + inner[r, k] / 2)
+    if circular:
+        cand.append(lead + trail)
+        mids.append((e[:, -1] + (lead + trail) / 2) % width)
+    cand, mids = np.stack(cand), np.stack(mids)
+    best = np.argmax(cand, axis=0)
+    r = np.arange(nrows)
+    return np.clip(cand[best, r], 0.0, width), mids[best, r]
+
+
+def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0):
+    """Widest open gap of free directions at each point, and its middle.
+
+    Parameters
+    ----------
+    points : (c, 2) float
+    tangents : (c, 2) float -- unit tangent per point; for inner points the
+        free half-plane is on its right (clockwise side).
+    seg_a, seg_b : (n, 2) float -- blocking segments.
+    inner : (c,) bool, optional -- half-plane (True, default) or whole
+        circle (False) of directions.
+    own : (c,) int, optional -- a segment each point lies on (ignored for
+        that point), -1 for none.
+    atol : float -- segments within ``atol`` of the point block nothing.
+
+    Returns
+    -------
+    width : (c,) float -- in [0, pi] for inner points, [0, 2 pi] otherwise.
+    angle : (c,) float -- world direction angle of the gap's middle.
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    c = len(p)
+    a = np.asarray(seg_a, dtype=np.float64).reshape(-1, 2)
+    b = np.asarray(seg_b, dtype=np.float64).reshape(-1, 2)
+    inner = np.ones(c, dtype=bool) if inner is None else np.asarray(inner, dtype=bool)
+    tg = np.asarray(tangents, dtype=np.float64).reshape(-1, 2)
+    tx = np.where(inner, tg[:, 0], 1.0)
+    ty = np.where(inner, tg[:, 1], 0.0)
+    # cross(t, v) >= 0 at both ends (v = end - p): the segment lies in the
+    # closed left half-plane and cannot block a ray to the right. Culled
+    # densely, the rest is done on the kept pairs only.
+    k = (tx * p[:, 1] - ty * p[:, 0])[:, None]
+    ca = np.outer(tx, a[:, 1]) - np.outer(ty, a[:, 0]) - k
+    cb = np.outer(tx, b[:, 1]) - np.outer(ty, b[:, 0]) - k
+    keep = (ca < 0) | (cb < 0)
+    keep[~inner] = True
+    if own is not None:
+        own = np.asarray(own, dtype=np.int64)
+        has = own >= 0
+        keep[np.flatnonzero(has), own[has]] = False
+    row, col = np.nonzero(keep)
+    del keep, k, ca, cb
+    pr = p[row]
+    va, vb = a[col] - pr, b[col] - pr
+    e = vb - va
+    l2 = np.einsum("ij,ij->i", e, e)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.nan_to_num(np.clip(-np.einsum("ij,ij->i", va, e) / l2, 0.0, 1.0))
+    far = np.hypot(*(va + t[:, None] * e).T) > atol
+    row, va, vb = row[far], va[far], vb[far]
+    txr, tyr = tx[row], ty[row]
+    # psi: angle measured clockwise from t; the right side is psi in (0, pi)
+    psa = -np.arctan2(txr * va[:, 1] - tyr * va[:, 0], txr * va[:, 0] + tyr * va[:, 1])
+    psb = -np.arctan2(txr * vb[:, 1] - tyr * vb[:, 0], txr * vb[:, 0] + tyr * vb[:, 1])
+    lo = np.minimum(psa, psb)
+    hi = np.maximum(psa, psb)
+    wrap = hi - lo > np.pi  # the short arc crosses the +-pi cut
+    width = np.empty(c)
+    psi = np.empty(c)
+    rin = inner[row]
+    # inner points: clip arcs to the right half-plane [0, pi]
+    st = np.where(wrap, np.maximum(hi, 0.0), np.maximum(lo, 0.0))
+    en = np.where(wrap, np.pi, hi)
+    m = rin & (en > st)
+    width[inner], psi[inner] = segmented_gap(np.cumsum(inner)[row[m]] - 1, st[m], en[m],
+                                             int(inner.sum()), np.pi)
+    if (~inner).any():  # whole circle, arcs split at the cut, shifted to [0, 2 pi]
+        vidx = np.cumsum(~inner) - 1
+        m = ~rin
+        r1 = vidx[row[m]]
+        st1 = np.where(wrap[m], hi[m], lo[m]) + np.pi
+        en1 = np.where(wrap[m], np.pi, hi[m]) + np.pi
+        w = m.copy()
+        w[m] = wrap[m]
+        r2 = vidx[row[w]]
+        st2 = np.zeros(int(w.sum()))
+        en2 = lo[w] + np.pi
+        nv = int((~inner).sum())
+        rr, ss, ee = np.r_[r1, r2], np.r_[st1, st2], np.r_[en1, en2]
+        width[~inner], shifted = segmented_gap(rr, ss, ee, nv, 2 * np.pi, circular=True)
+        psi[~inner] = shifted - np.pi
+    angle = np.arctan2(ty, tx) - psi
+    return width, (angle + np.pi) % (2 * np.pi) - np.pi

@@ -32,10 +32,14 @@ class AreaRecord:
         What created it: ``"bootstrap"``, ``"case2-1"``, ``"case2-2"``,
         ``"case2-3"``, ``"case3"``, ``"case4"``, ``"fig12c"``, ``"one-sided"``
         (Theorem 4 (B)/(C): the side not traced), ``"left"`` (a trace left
-        the area through its other end), ``"escape"``, ``"limit"``.
+        the area through its other end), ``"escape"``, ``"revisit"`` (a pass
+        through a deferred lid found a new contact), ``"limit"``.
     outcome : str
         How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,
-        ``"W3"``, ``"split"`` (children registered), ``"unknown"`` (budget).
+        ``"W3"``, ``"split"`` (children registered), ``"deferred"`` (a dead
+        end, to be looked at again), ``"open"`` (an opening to F between
+        separate objects: nothing behind the lid), ``"unknown"`` (still
+        unknown: passes found nothing new, or a budget ran out).
     """
 
     index: int
@@ -90,7 +94,8 @@ class SliceResult:
     w1 : list of (k, 2) float -- traced polylines.
     w2 : list of (2, 2) float -- approximated segments (length < eps).
     w3 : list of (2, 2) float -- lids of never-touching areas.
-    unknown : list of (2, 2) float -- areas still unknown when a budget hit.
+    unknown : list of (2, 2) float -- areas still unknown at the end (a
+        budget hit, or passes through the lid found nothing new).
     areas : list of AreaRecord -- the A_iB_i log.
     stats : SenseStats
     """

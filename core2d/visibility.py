@@ -78,7 +78,8 @@ def segmented_gap(row, st, en, nrows, width, circular=False):
     return np.clip(cand[best, r], 0.0, width), mids[best, r]
 
 
-def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0):
+def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
+              chunk: int = 500_000):
     """Widest open gap of free directions at each point, and its middle.
 
     Parameters
@@ -92,6 +93,7 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0):
     own : (c,) int, optional -- a segment each point lies on (ignored for
         that point), -1 for none.
     atol : float -- segments within ``atol`` of the point block nothing.
+    chunk : int -- points x segments pairs handled at once (memory bound).
 
     Returns
     -------
@@ -103,7 +105,14 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0):
     a = np.asarray(seg_a, dtype=np.float64).reshape(-1, 2)
     b = np.asarray(seg_b, dtype=np.float64).reshape(-1, 2)
     inner = np.ones(c, dtype=bool) if inner is None else np.asarray(inner, dtype=bool)
-    tg = np.asarray(tangents, dtype=np.float64).reshape(-1, 2)
+    tg = np.broadcast_to(np.asarray(tangents, dtype=np.float64).reshape(-1, 2), (c, 2))
+    own = None if own is None else np.asarray(own, dtype=np.int64)
+    step = max(1, chunk // max(len(a), 1))
+    if c > step:
+        parts = [free_gaps(p[i:i + step], tg[i:i + step], a, b, inner[i:i + step],
+                           None if own is None else own[i:i + step], atol, chunk)
+                 for i in range(0, c, step)]
+        return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
     tx = np.where(inner, tg[:, 0], 1.0)
     ty = np.where(inner, tg[:, 1], 0.0)
     # cross(t, v) >= 0 at both ends (v = end - p): the segment lies in the
@@ -115,7 +124,6 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0):
     keep = (ca < 0) | (cb < 0)
     keep[~inner] = True
     if own is not None:
-        own = np.asarray(own, dtype=np.int64)
         has = own >= 0
         keep[np.flatnonzero(has), own[has]] = False
     row, col = np.nonzero(keep)

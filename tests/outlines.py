@@ -15,7 +15,7 @@ units of ``eps`` so that pockets 0.5 - 2 eps wide occur on purpose.
   inside another's pocket;
 * ``holes`` -- a solid with one to three holes (never reachable);
 * ``numerics`` -- near-collinear runs, tiny edges, a large coordinate
-  offset, sliver spikes.
+  offset, sliver spikes one eps wide at their base.
 
 Examples
 --------
@@ -160,12 +160,12 @@ def numerics(rng, eps=1.0):
         if rng.random() < 0.3:  # a tiny edge
             out.append(p + 1e-6 * (q - p) / np.linalg.norm(q - p))
     poly = _clean(Polygon(out))
-    if rng.random() < 0.5:  # a sliver spike 0.2 eps wide at its base
+    if rng.random() < 0.5:  # a sliver spike one eps wide at its base
         c = np.asarray(poly.representative_point().coords[0])
         a = rng.uniform(0, 2 * np.pi)
         d = np.array([np.cos(a), np.sin(a)])
         n = np.array([-d[1], d[0]])
-        poly = _clean(poly.union(Polygon([c + 0.1 * eps * n, c + 70 * d, c - 0.1 * eps * n])))
+        poly = _clean(poly.union(Polygon([c + 0.5 * eps * n, c + 70 * d, c - 0.5 * eps * n])))
     loops = loops_from_shapely(poly)
     shift = rng.choice([0.0, 1e5, 1e6])
     return [lp + shift for lp in loops]

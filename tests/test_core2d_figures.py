@@ -19,10 +19,11 @@ from core2d.planar import unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.planner.regions import (G_region, Posture, T_contains, common_point, contains, in_V, sgn,
                             trace_direction)
+from core2d.planner.revisit import MAX_TRIES, revisit
 from core2d.planner.tracing import is_internal, plan_sides
 from figure_scenes import (DOWN, FIG9, FIG9_A, FIG9_B, FIG9_DIR_B, FIG9_EXT, FIG9_H, GRAZE_DIR,
                            LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, V_CORNER, V_POCKET, block,
-                           chain, dist_to_contour, graze_point, make_probe, on_int, place,
+                           chain, dist_to_contour, graze_point, make_probe, new_run, on_int, place,
                            pose_to, posture_touches, run_one, seg_param, vertical_area)
 
 rng = np.random.default_rng(20000316)
@@ -301,16 +302,45 @@ def _single_area(top):
     return loops, probe, Area(LIP_LEFT.copy(), floor, pose, pose)
 
 
+def _known_except(loops, area):
+    """The robot's map after everything but C_A^B has been traced: the true
+    contour minus the arc between A and B, material on the right."""
+    arc = chain(loops, area.b, area.a)  # the rest of the loop, B -> A
+    return np.asarray(arc.coords)
+
+
 def test_fig6b_planner_W3_single_probe_detection():
     """§4.2.1: 'Once Area(G_i) = 0 is detected, the algorithm categorizes A_iB_i
-    into never touching area W3'."""
+    into never touching area W3'. The slit is SLIT_GAP = 0.13 wide: the pivot
+    about the tip cannot resolve it, but the robot's map (everything else
+    traced) still lets a thin fan of lines through, so the area is marked
+    pinched and deferred; the passes the map allows end at the lid's touched
+    ends, which confirms the paper's W3."""
     loops, probe, area = _single_area(SLIT)
     assert area.single
+    run = new_run(probe)
+    run.known.add(_known_except(loops, area))
+    run.add(area)
+    run.process(run.queue.popleft())
+    rec = run.result.areas[0]
+    assert rec.outcome == "deferred" and area.pinched
+    before = probe.stats.motions
+    revisit(run)
+    assert rec.outcome == "W3" and "single probe detection" in rec.note
+    assert len(run.result.w3) == 1 and not run.queue and not run.deferred
+    np.testing.assert_allclose(run.result.w3[0], [area.a, area.b])
+    assert probe.stats.motions - before == 2 * MAX_TRIES  # approach + insert per pass
+
+
+def test_fig6b_zero_area_is_not_W3_while_lines_still_cross_the_lid():
+    """Area(G_i) = 0 on an empty map: lines from F through the lid are not
+    excluded by anything the robot has recorded, so it is a dead end
+    (deferred for a second look), not W3."""
+    loops, probe, area = _single_area(SLIT)
     run = run_one(probe, area)
     rec = run.result.areas[0]
-    assert rec.outcome == "W3" and "single probe detection" in rec.note
-    assert len(run.result.w3) == 1 and not run.queue
-    np.testing.assert_allclose(run.result.w3[0], [area.a, area.b])
+    assert rec.outcome == "deferred" and "Area(G) = 0" in rec.note
+    assert not run.result.w3 and run.deferred == [area]
 
 
 def test_fig6a_planner_uses_the_triangle():

@@ -17,6 +17,7 @@ MODULES = [
     "slicer.agreement",
     "core2d.planar",
     "core2d.visibility",
+    "core2d.planner.known",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
 ]

@@ -23,6 +23,13 @@ class Area:
     G, zero_G -- for a single probe detection, G_i is generated when the
         area is found by rotating the probe about its tip (Definition 1);
         ``zero_G`` records Area(G_i) = 0.
+    escape : bool -- infinite loop escape requested (§4.4).
+    lineage : tuple of ((2,) float, (2,) float) -- (A, B) of every ancestor,
+        for the §4.4 test over the whole ancestry.
+    stale : int -- generations in a row whose processing traced no new contour.
+    tries : int -- passes through the lid that found nothing new (revisits).
+    pinched : bool -- single probe detection with Area(G_i) = 0 seen, but
+        the robot's map still let lines cross the lid (see revisit).
     """
 
     a: np.ndarray
@@ -36,6 +43,10 @@ class Area:
     escape: bool = False
     G: object = None  # G_i made at detection time (single probe detection)
     zero_G: bool = False  # Area(G_i) = 0 verified at detection time
+    lineage: tuple = ()
+    stale: int = 0
+    tries: int = 0
+    pinched: bool = False
 
     @property
     def dist(self) -> float:

@@ -5,17 +5,22 @@ recorded itself; it never sees the contour. Per unknown area A_iB_i:
 
 1. Dist(A_i, B_i) < eps  ->  W2 (§3.1, §4.4).
 2. Single probe detection (Fig. 6): G_i by rotating about the tip;
-   Area(G_i) = 0  ->  W3 (§4.2.1).
-3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i);
-   when the recorded postures leave no pass into V_i, the area is probed
-   again from V_i, perpendicular to L_{A_i}^{B_i}, before it is called W3.
-4. Bisection local concave point search (Theorems 2, 3) to D_i. When the
-   same contacts come back (an area registered again within eps/2) or the
-   bisection fails, infinite loop escape (§4.4) splits A_iB_i at C.
+   Area(G_i) = 0  ->  W3 (§4.2.1). This and the proof of
+   :mod:`core2d.planner.revisit` are the only ways to W3.
+3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i).
+4. Bisection local concave point search (Theorems 2, 3) to D_i. Infinite
+   loop escape (§4.4) splits A_iB_i at C when the area repeats an ancestor's
+   A and B, when generations in a row trace no new contour, or when the
+   bisection fails.
 5. Tracing motion planning (Theorem 4) from D_i on one or both sides; the
    events Case 1 - 4 register new areas by the rule of §4.3.3 (and the
    Fig. 12(c) split for a one-sided start).
 
+An area whose contour C_A^B has meanwhile been traced through other areas
+(:meth:`KnownContour.covers`) is closed as traced. A dead end -- no pass, or
+a pass that finds no new contact -- never makes W3: the area is deferred,
+and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
+it again with everything the robot has recorded (another pass, another side).
 Areas are processed breadth first until none is left or a budget is hit.
 """
 from __future__ import annotations
@@ -27,13 +32,18 @@ import numpy as np
 
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.bootstrap import bootstrap
+from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.readings import LEFT, RIGHT
+from core2d.planner.revisit import revisit
 from core2d.planner.regions import Posture, near_probe
-from core2d.result import AreaRecord, SliceResult
 from core2d.planner.tracing import attach_pivot_G, plan_sides, trace_side
+from core2d.readings import LEFT, RIGHT
+from core2d.result import AreaRecord, SliceResult
 
 __all__ = ["explore", "Budget"]
+
+#: generations in a row without new traced contour before §4.4 escape
+STALE = 3
 
 
 class Budget:
@@ -71,20 +81,13 @@ def _single_posture(area, probe):
     return None
 
 
-def _fresh_postures(area, probe):
-    """Postures through A_i and B_i perpendicular to L_{A_i}^{B_i}, coming
-    from V_i (Definition 3), with their joints at probe length."""
-    d = (area.b - area.a) / area.dist
-    n = np.array([-d[1], d[0]])  # V_i side of A -> B
-    return (Posture(area.a + probe.length * n, -n), Posture(area.b + probe.length * n, -n))
-
-
 def _single_detection(probe, pose, area):
     """Definition 1, Fig. 6(a), for an area whose A_i and B_i lie on one
     recorded posture: bring the probe back to that posture -- along its line
     shifted 2 tol away from the body contact, so the tip does not catch the
     grazed corner -- then generate G_i by rotating about the tip. Returns
-    G_i, or None when Area(G_i) = 0 (Fig. 6(b))."""
+    ``(G_i, ok)``: G_i is None when Area(G_i) = 0 (Fig. 6(b)); ``ok`` is
+    False when the posture could not be taken again (no tip contact)."""
     t = pose.direction
     n = np.array([-t[1], t[0]])
     along = [(np.asarray(p) - pose.joint) @ t for p in (area.a, area.b)]
@@ -92,15 +95,20 @@ def _single_detection(probe, pose, area):
     side = 1.0 if (np.asarray(body_pt) - pose.joint) @ n >= 0 else -1.0
     shifted = Posture(pose.joint - side * 2 * probe.tol * n, t)
     if _reestablish(probe, shifted).tip_contact is None:
-        return None
-    return pivot_G(probe, RIGHT if side > 0 else LEFT)
+        return None, False
+    return pivot_G(probe, RIGHT if side > 0 else LEFT), True
 
 
 class _Run:
+    """Per-slice state: the queue of areas, the deferred ones, the result and
+    the robot's own map of what it has recorded (:class:`KnownContour`)."""
+
     def __init__(self, probe, eps, budget):
         self.probe, self.eps, self.budget = probe, eps, budget
         self.result = SliceResult()
         self.queue = deque()
+        self.deferred = []
+        self.known = KnownContour(join=probe.tip_zone)
 
     def add(self, area):
         area.index = len(self.result.areas)
@@ -112,14 +120,37 @@ class _Run:
     def close(self, area, outcome, note=""):
         rec = self.result.areas[area.index]
         rec.outcome, rec.note = outcome, note
-        if outcome in ("W2", "W3"):
-            getattr(self.result, outcome.lower()).append(np.stack([area.a, area.b]))
+        if outcome in ("W2", "W3", "unknown"):
+            lid = np.stack([area.a, area.b])
+            getattr(self.result, outcome.lower()).append(lid)
+            if outcome != "unknown":
+                self.known.add(lid)
 
-    def children(self, area, kids):
+    def defer(self, area, why):
+        """A dead end: the area stays unknown and is looked at again later."""
+        rec = self.result.areas[area.index]
+        rec.outcome, rec.note = "deferred", why
+        self.deferred.append(area)
+
+    def traced(self, polylines) -> float:
+        """Record W1 polylines (material on the right); their total length."""
+        self.result.w1.extend(polylines)
+        for pl in polylines:
+            self.known.add(pl)
+        return float(sum(np.hypot(*np.diff(pl, axis=0).T).sum() for pl in polylines))
+
+    def children(self, area, kids, traced=0.0):
+        """Register ``kids`` of ``area``; §4.4 over the whole ancestry: a kid
+        repeating the A and B of any ancestor, or the STALE-th generation in
+        a row that traced less than eps of new contour, requests the escape."""
         same = self.probe.tip_zone  # contacts closer than eps/2 are one contact
+        lineage = area.lineage + ((area.a, area.b),)
+        stale = 0 if traced >= self.eps else area.stale + 1
         for kid in kids:
-            if _same(kid.a, area.a, same) and _same(kid.b, area.b, same):
-                kid.escape = True  # the same contacts again: infinite loop escape
+            kid.lineage, kid.stale = lineage, stale
+            if stale >= STALE or any(_same(kid.a, a, same) and _same(kid.b, b, same)
+                                     for a, b in lineage):
+                kid.escape = True
             self.add(kid)
         self.close(area, "split" if kids else "traced")
 
@@ -127,39 +158,51 @@ class _Run:
         probe, eps = self.probe, self.eps
         if area.dist < eps:
             return self.close(area, "W2", "Dist(A,B) < eps")
-        G = area.G
+        if self.known.covers(area.a, area.b, 2 * probe.tol):
+            return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
-            return self.close(area, "W3", "single probe detection, Area(G) = 0")
+            return self.zero_G(area)
+        G = area.G
         pose = None if G is not None else _single_posture(area, probe)
         if pose is not None:
-            G = _single_detection(probe, pose, area)
-            if G is None:
-                return self.close(area, "W3", "single probe detection, Area(G) = 0")
+            G, ok = _single_detection(probe, pose, area)
+            if ok and G is None:
+                return self.zero_G(area)
         reading, G, why = initial_pass(probe, area, G)
-        if reading is None and why.startswith("no pass"):
-            # the recorded postures leave no pass into V_i (stale postures
-            # inherited through registrations): probe again from the free
-            # side, perpendicular to L_{A_i}^{B_i}, before calling it W3
-            area.pose_a, area.pose_b = _fresh_postures(area, probe)
-            reading, G, why = initial_pass(probe, area)
         if reading is None:
-            return self.close(area, "W3", why)
+            return self.defer(area, why)
         c = reading.tip_contact.point
         pose_c = Posture(reading.joint, reading.direction)
         if _same(c, area.a, 2 * probe.tol) or _same(c, area.b, 2 * probe.tol):
-            return self.close(area, "W3", "Theorem 1 pass found no new contact")
+            return self.defer(area, "Theorem 1 pass found no new contact")
         joint_i = reading.joint.copy()
         local = None if area.escape else bisection(probe, area, G, reading)
         if local is None:
             return self.escape(area, c, pose_c)
         self.trace(area, G, joint_i, local)
 
-    def escape(self, area, c, pose_c):
+    def zero_G(self, area):
+        """Single probe detection with Area(G_i) = 0 (Fig. 6(b), §4.2.1): the
+        paper's W3 -- the pass the probe held is the only one through its
+        tip. W3 at once when the robot's map agrees that no line from F
+        crosses the lid (:meth:`KnownContour.free_lines`). Where lines remain
+        (a slit narrower than eps that the pivot cannot resolve, or Fig. 6(b)
+        met inside a slot narrower than eps, where §3.2 fails) the area is
+        marked pinched and deferred: :mod:`core2d.planner.revisit` tries
+        those lines before it decides."""
+        probe = self.probe
+        if not self.known.free_lines(area.a, area.b, spacing=self.eps / 2, margin=probe.tol,
+                                     min_gap=probe.ang_tol):
+            return self.close(area, "W3", "single probe detection, Area(G) = 0")
+        area.pinched = True
+        return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")
+
+    def escape(self, area, c, pose_c, rule="escape"):
         """§4.4: split A_iB_i at the new contact found by the initial pass."""
-        self.probe.stats.escapes += 1
+        self.probe.stats.escapes += rule == "escape"
         d = area.depth + 1
-        kids = [Area(area.a, c, area.pose_a, pose_c, area.index, "escape", d),
-                Area(c, area.b, pose_c, area.pose_b, area.index, "escape", d)]
+        kids = [Area(area.a, c, area.pose_a, pose_c, area.index, rule, d),
+                Area(c, area.b, pose_c, area.pose_b, area.index, rule, d)]
         self.children(area, kids)
 
     def trace(self, area, G, joint_i, local):
@@ -168,6 +211,7 @@ class _Run:
         pose_d = Posture(local.reading.joint, local.reading.direction)
         kids = []
         dq = None
+        traced = 0.0
         if len(sides) == 1 and q is not None:  # Fig. 12(c): (D_i, Q) is a single
             dq = register(local.point, pose_d, q.point, pose_d, sides[0], area.index,
                           "fig12c", area.depth + 1)  # probe detection: G_i now
@@ -179,7 +223,7 @@ class _Run:
                                      not toward_B, area.index, "limit", area.depth + 1))
                 continue
             lines, new, _ = trace_side(probe, area, G, joint_i, local, toward_B, self.budget)
-            self.result.w1.extend(lines)
+            traced += self.traced(lines)
             kids.extend(new)
         if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)
             fin_is_A = sides[0]  # the side not traced
@@ -193,7 +237,7 @@ class _Run:
             else:
                 kids.append(register(local.point, pose_d, p_fin, pose_fin, fin_is_A,
                                      area.index, "one-sided", d))
-        self.children(area, kids)
+        self.children(area, kids, traced)
 
 
 def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
@@ -217,13 +261,16 @@ def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -
     run = _Run(probe, eps, budget)
     for area in bootstrap(probe, bootstrap_count):
         run.add(area)
-    while run.queue:
-        if not budget():
+    while True:
+        while run.queue and budget():
+            run.process(run.queue.popleft())
+        if run.queue or not run.deferred or not budget():
             break
-        run.process(run.queue.popleft())
-    for area in run.queue:
-        run.result.unknown.append(np.stack([area.a, area.b]))
-        run.close(area, "unknown")
+        revisit(run)  # dead ends, with everything recorded so far
+        if not run.queue:
+            break
+    for area in list(run.queue) + run.deferred:  # the budget ran out
+        run.close(area, "unknown", run.result.areas[area.index].note)
     stats = run.result.stats = probe.stats
     stats.areas = len(run.result.areas)
     stats.budget_hit = budget.hit

@@ -64,6 +64,8 @@ def is_internal(p2, area, G, joint_i):
 def trace_side(probe, area, G, joint_i, local, toward_B, budget):
     """Trace one side from D_i; returns (w1 polylines, new areas, cases).
 
+    The polylines are oriented like C_{A_i}^{B_i} (material on the right).
+
     Parameters
     ----------
     probe : Probe -- its tip is at D_i with direction t*.
@@ -80,11 +82,13 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
     p_fin = area.a if fin_is_A else area.b
     pose_fin = area.pose_a if fin_is_A else area.pose_b
     p_other = area.b if fin_is_A else area.a
+    pose_other = area.pose_b if fin_is_A else area.pose_a
     polylines, new, cases = [], [], []
     depth = area.depth + 1
     pieces = [local.point[None]]
     while budget():
-        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other)
+        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other,
+                        stop_joint=pose_fin.joint, leave_joint=pose_other.joint)
         if len(r.trace):
             pieces.append(r.trace)
         p1 = pieces[-1][-1]
@@ -138,4 +142,6 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
         new.append(register(pieces[-1][-1], Posture(probe.joint.copy(), probe.direction),
                             p_fin, pose_fin, fin_is_A, area.index, "limit", depth))
     polylines.append(np.concatenate(pieces))
-    return [p for p in polylines if len(p) >= 2], new, cases
+    # W1 runs like C_A^B, material on the right: from D_i towards B_i as
+    # traced, towards A_i reversed
+    return [p if toward_B else p[::-1] for p in polylines if len(p) >= 2], new, cases

@@ -56,8 +56,33 @@ def _segment_distance(point, a, b) -> float:
     return float(np.hypot(ax + s * abx - px, ay + s * aby - py))
 
 
+def _passes(probe, point, p, q, joint, point_joint=None) -> bool:
+    """Did the tip, stepping from contact p to contact q, pass ``point``?
+
+    Within 2 tol of the step; or within eps/2 -- the paper's resolution: a
+    step's chord cuts a convex corner -- when the posture that touched
+    ``point`` (its joint ``point_joint``) came from the same side of the
+    step as the probe now. A point touched from the other side lies across
+    material (the other face of a feature thinner than eps), not on the
+    tip's path.
+    """
+    point = np.asarray(point, float)
+    d = _segment_distance(point, p, q)
+    if d <= 2 * probe.tol:
+        return True
+    if d > probe.tip_zone:
+        return False
+    if point_joint is None:
+        return True
+    e = q - p
+    ours = e[0] * (joint[1] - p[1]) - e[1] * (joint[0] - p[0])
+    theirs = e[0] * (point_joint[1] - p[1]) - e[1] * (point_joint[0] - p[0])
+    return ours * theirs > 0
+
+
 def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
-                    guard_push=True, max_steps=20000, leave_at=None):
+                    guard_push=True, max_steps=20000, leave_at=None, stop_joint=None,
+                    leave_joint=None):
     """Trace with the tip from the current contact; see the module doc.
 
     Parameters
@@ -71,6 +96,8 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     guard_push : bool -- stop as soon as v.t > 0 (Case 3).
     leave_at : (2,) float, optional -- the other end of the designated area;
         the tip passing it means the trace left the area (event ``"left"``).
+    stop_joint, leave_joint : (2,) float, optional -- joints of the postures
+        that touched ``stop_at`` and ``leave_at`` (see :func:`_passes`).
 
     Returns
     -------
@@ -133,16 +160,14 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         if not continuous:
             event, primary = "jump", contact
             break
-        if stop_at is not None and last is not None and _segment_distance(
-                np.asarray(stop_at, float), last.point, contact.point) <= probe.tip_zone:
-            # within eps/2 of the tip's path: reached at the paper's resolution
-            # (a chord cuts a convex corner, so 2 tol would miss P_fin there)
+        if stop_at is not None and last is not None and _passes(
+                probe, stop_at, last.point, contact.point, joint, stop_joint):
             trace.append(np.asarray(stop_at, float))
             event = "reached"  # the tip passed P_fin during this step
             break
         if leave_at is not None and last is not None and np.linalg.norm(
-                trace[0] - leave_at) > probe.tip_zone and _segment_distance(
-                np.asarray(leave_at, float), last.point, contact.point) <= probe.tip_zone:
+                trace[0] - leave_at) > probe.tip_zone and _passes(
+                probe, leave_at, last.point, contact.point, joint, leave_joint):
             trace.append(np.asarray(leave_at, float))
             event = "left"  # the tip passed the other end of the area
             break

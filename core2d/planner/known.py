@@ -1,0 +1,202 @@
+"""What the robot has itself recorded of the contour: its own map.
+
+Everything here is built from the planner's results -- W1 polylines traced
+by the tip, W2 chords, W3 lids -- never from the true contour. Every piece
+is stored oriented the way the paper orients an area A_iB_i: the contour
+runs with the material on its right (V_i on its left, Definition 3).
+
+Two questions the map answers:
+
+* :meth:`KnownContour.covers` -- is the contour from A to B already known
+  (a chain of recorded pieces leads from A to B)? Then an unknown area
+  A_iB_i has been traced through other areas and needs nothing more.
+* :meth:`KnownContour.free_lines` -- can a straight line from the free area
+  F still cross the open lid L_{A}^{B} from its V side without meeting
+  recorded contour? Every piece of the map is real contour (W1 was touched
+  by the tip; a line crossing a W2 chord or a proven W3 lid crosses the
+  contour behind it), so a line that meets the map is blocked by the real
+  contour. The contour C_A^B behind the lid is reachable only through the
+  lid (the lid and the arc bound the region behind it, and a straight line
+  cannot cross the lid twice), so **when no line from F reaches the open
+  lid past the map, no point of C_A^B can be touched: the robot has proven
+  W3 from its own records** (the extension of Area(G_i) = 0, §4.2.1, to
+  lids whose surroundings are known). When lines remain, each is a pass
+  the robot can try.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from core2d.visibility import free_gaps
+
+__all__ = ["KnownContour", "FreeLine"]
+
+
+@dataclass(frozen=True)
+class FreeLine:
+    """A line from F that crosses the lid past the recorded contour.
+
+    point : (2,) float -- where it crosses the lid.
+    direction : (2,) float -- unit direction from F towards the lid, through
+        the middle of the free gap.
+    gap : float -- angular width of that free gap (rad).
+    along : float -- position of ``point`` along the lid, 0 at A, 1 at B.
+    """
+
+    point: np.ndarray
+    direction: np.ndarray
+    gap: float
+    along: float
+
+    def turned(self, fraction: float) -> np.ndarray:
+        """Direction from F through the gap at ``fraction`` of its width
+        (0.5 the middle, 0 and 1 its edges), counter-clockwise positive."""
+        ang = np.arctan2(self.direction[1], self.direction[0]) + (fraction - 0.5) * self.gap
+        return np.array([np.cos(ang), np.sin(ang)])
+
+
+class KnownContour:
+    """The recorded contour: oriented pieces (polylines) with material on the right.
+
+    Parameters
+    ----------
+    join : float
+        A piece passing within ``join`` of another piece's last point
+        continues it (the paper's resolution: contacts within eps/2 are one
+        contact).
+
+    Examples
+    --------
+    >>> k = KnownContour(join=0.5)
+    >>> k.add([[0.0, 0.0], [4.0, 0.0]]); k.add([[4.2, 0.1], [8.0, 0.0]])
+    >>> k.covers([1.0, 0.0], [7.0, 0.0], tol=0.1), k.covers([7.0, 0.0], [1.0, 0.0], tol=0.1)
+    (True, False)
+    """
+
+    def __init__(self, join: float):
+        self.join = float(join)
+        self.pieces: list[np.ndarray] = []
+        self._a = np.zeros((0, 2))
+        self._b = np.zeros((0, 2))
+        self._piece = np.zeros(0, dtype=np.int64)  # piece of every segment
+        self._first = []  # index of each piece's first segment
+        self._next = []  # piece i -> [(j, k)]: piece j passes piece i's end at its segment k
+
+    def add(self, polyline) -> None:
+        """Record a piece, (k, 2) float with k >= 2, material on its right."""
+        pl = np.asarray(polyline, dtype=np.float64).reshape(-1, 2)
+        if len(pl) < 2:
+            return
+        i = len(self.pieces)
+        ends = np.array([p[-1] for p in self.pieces]).reshape(-1, 2)
+        self.pieces.append(pl)
+        self._first.append(len(self._a))
+        # pieces that continue the new one, and old pieces the new one continues
+        nxt = []
+        if len(self._a):
+            d = _point_segments(pl[-1], self._a, self._b)
+            for j in np.unique(self._piece[d <= self.join]):
+                k = int(np.argmax(d[self._first[j]:] <= self.join))
+                nxt.append((int(j), k))
+        self._next.append(nxt)
+        for j in range(len(ends)):
+            d = _point_segments(ends[j], pl[:-1], pl[1:])
+            if (d <= self.join).any():
+                self._next[j].append((i, int(np.argmax(d <= self.join))))
+        self._a = np.concatenate([self._a, pl[:-1]])
+        self._b = np.concatenate([self._b, pl[1:]])
+        self._piece = np.concatenate([self._piece, np.full(len(pl) - 1, i)])
+
+    def segments(self) -> tuple[np.ndarray, np.ndarray]:
+        """(n, 2), (n, 2) float: start and end of every recorded segment."""
+        return self._a, self._b
+
+    def distance(self, point) -> float:
+        """Distance from ``point`` (2,) to the recorded contour (inf if none)."""
+        if len(self._a) == 0:
+            return float("inf")
+        return float(_point_segments(np.asarray(point, float), self._a, self._b).min())
+
+    def crosses(self, p, q, margin: float) -> bool:
+        """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
+        a, b = self._a, self._b
+        if len(a) == 0:
+            return False
+        p, q = np.asarray(p, float), np.asarray(q, float)
+        pq = q - p
+        n = float(np.hypot(*pq))
+        if n <= 2 * margin:
+            return False
+        u = pq / n
+        p2, q2 = p + margin * u, q - margin * u
+        d1 = _cross2(q2 - p2, a - p2)
+        d2 = _cross2(q2 - p2, b - p2)
+        d3 = _cross2(b - a, p2 - a)
+        d4 = _cross2(b - a, q2 - a)
+        return bool(np.any((d1 * d2 <= 0) & (d3 * d4 <= 0) & ((d1 != 0) | (d2 != 0))))
+
+    def covers(self, a, b, tol: float) -> bool:
+        """Is C_A^B known: a chain of pieces, each continuing the last within
+        ``join``, leading from (within ``tol`` of) A to (within ``tol`` of) B
+        in the pieces' direction?"""
+        if len(self._a) == 0:
+            return False
+        near_a = _point_segments(np.asarray(a, float), self._a, self._b) <= tol
+        near_b = _point_segments(np.asarray(b, float), self._a, self._b) <= tol
+        if not near_a.any() or not near_b.any():
+            return False
+        first = np.asarray(self._first)
+        local = np.arange(len(self._a)) - first[self._piece]
+        last_b = np.full(len(self.pieces), -1)  # last segment of each piece near B
+        np.maximum.at(last_b, self._piece[near_b], local[near_b])
+        best = {}  # piece -> earliest segment reached
+        todo = [(int(self._piece[g]), int(local[g])) for g in np.flatnonzero(near_a)]
+        while todo:
+            i, k = todo.pop()
+            if best.get(i, 1 << 60) <= k:
+                continue
+            best[i] = k
+            if last_b[i] >= k:
+                return True
+            todo.extend(self._next[i])
+        return False
+
+    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> list[FreeLine]:
+        """Lines from F crossing the open lid A->B from its V side (Def. 3)
+        past the recorded contour, one per lid sample with a free gap wider
+        than ``min_gap``; empty when none is left (the W3 proof above).
+
+        The lid is sampled every ``spacing`` (at most 512 samples), leaving
+        ``margin`` at each touched end.
+        """
+        a, b = np.asarray(a, float), np.asarray(b, float)
+        ab = b - a
+        n = float(np.hypot(*ab))
+        if n <= 2 * margin:
+            return []
+        k = int(min(512, max(2, np.ceil((n - 2 * margin) / spacing) + 1)))
+        s = np.linspace(margin, n - margin, k)
+        pts = a + (s / n)[:, None] * ab
+        tangent = np.broadcast_to(-ab / n, pts.shape)  # B -> A: V_i on its right
+        width, angle = free_gaps(pts, tangent, self._a, self._b)
+        ok = width > min_gap
+        out = []
+        for p, w, ang, f in zip(pts[ok], width[ok], angle[ok], s[ok] / n):
+            toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid
+            out.append(FreeLine(p, toward, float(w), float(f)))
+        return out
+
+
+def _cross2(x, y):
+    return x[..., 0] * y[..., 1] - x[..., 1] * y[..., 0]
+
+
+def _point_segments(p, a, b) -> np.ndarray:
+    """(n,) distances from point p to segments a -> b."""
+    e = b - a
+    l2 = np.einsum("ij,ij->i", e, e)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.nan_to_num(np.clip(np.einsum("ij,ij->i", p - a, e) / l2, 0.0, 1.0))
+    return np.hypot(*(a + t[:, None] * e - p).T)

@@ -19,9 +19,10 @@ from core2d.planar import unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.planner.regions import (G_region, Posture, T_contains, common_point, contains, in_V, sgn,
                             trace_direction)
-from core2d.planner.revisit import MAX_TRIES, revisit
+from core2d.planner.revisit import MAX_SWEEP, MAX_TRIES, revisit
 from core2d.planner.tracing import is_internal, plan_sides
-from figure_scenes import (DOWN, FIG9, FIG9_A, FIG9_B, FIG9_DIR_B, FIG9_EXT, FIG9_H, GRAZE_DIR,
+from figure_scenes import (DOWN, FIG9, FIG9_A, FIG9_B, FIG9_DIR_B, FIG9_EXT, FIG9_H, GRAZE_AWAY,
+                           GRAZE_DIR,
                            LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, V_CORNER, V_POCKET, block,
                            chain, dist_to_contour, graze_point, make_probe, new_run, on_int, place,
                            pose_to, posture_touches, run_one, seg_param, vertical_area)
@@ -313,9 +314,9 @@ def test_fig6b_planner_W3_single_probe_detection():
     """§4.2.1: 'Once Area(G_i) = 0 is detected, the algorithm categorizes A_iB_i
     into never touching area W3'. The slit is SLIT_GAP = 0.13 wide: the pivot
     about the tip cannot resolve it, but the robot's map (everything else
-    traced) still lets a thin fan of lines through, so the area is marked
-    pinched and deferred; the passes the map allows end at the lid's touched
-    ends, which confirms the paper's W3."""
+    traced) still lets a thin fan of lines through, so the area is deferred;
+    the revisit probes the lid every eps/2, every pass ends at a touched end
+    of the lid, and the lid closes the loop of recorded contour: W3."""
     loops, probe, area = _single_area(SLIT)
     assert area.single
     run = new_run(probe)
@@ -323,13 +324,29 @@ def test_fig6b_planner_W3_single_probe_detection():
     run.add(area)
     run.process(run.queue.popleft())
     rec = run.result.areas[0]
-    assert rec.outcome == "deferred" and area.pinched
+    assert rec.outcome == "deferred" and "Area(G) = 0" in rec.note
     before = probe.stats.motions
     revisit(run)
-    assert rec.outcome == "W3" and "single probe detection" in rec.note
+    assert rec.outcome == "W3" and "touched end" in rec.note
     assert len(run.result.w3) == 1 and not run.queue and not run.deferred
     np.testing.assert_allclose(run.result.w3[0], [area.a, area.b])
-    assert probe.stats.motions - before == 2 * MAX_TRIES  # approach + insert per pass
+    sweep = min(MAX_SWEEP, np.ceil(2 * area.dist / EPS))  # one pass every eps/2
+    assert area.tries == MAX_TRIES + sweep
+    assert probe.stats.motions - before == 2 * area.tries  # approach + insert per pass
+
+
+def test_fig6b_closed_slit_is_W3_at_once():
+    """With the slit closed (the roof corner on the grazing line) the map
+    leaves no line through the lid: Area(G_i) = 0 decides W3 at once."""
+    loops, probe, area = _single_area(SLIT)
+    run = new_run(probe)
+    run.known.add(_known_except(loops, area))
+    run.known.add([SLIT_CORNER, LIP_LEFT - 0.05 * GRAZE_AWAY])  # the slit shut above A
+    run.add(area)
+    run.process(run.queue.popleft())
+    rec = run.result.areas[0]
+    assert rec.outcome == "W3" and rec.note == "single probe detection, Area(G) = 0"
+    assert not run.deferred
 
 
 def test_fig6b_zero_area_is_not_W3_while_lines_still_cross_the_lid():
@@ -341,6 +358,8 @@ def test_fig6b_zero_area_is_not_W3_while_lines_still_cross_the_lid():
     rec = run.result.areas[0]
     assert rec.outcome == "deferred" and "Area(G) = 0" in rec.note
     assert not run.result.w3 and run.deferred == [area]
+    revisit(run)  # nothing else recorded: passes find new contour; never W3
+    assert rec.outcome != "W3" and not run.result.w3
 
 
 def test_fig6a_planner_uses_the_triangle():

@@ -217,6 +217,8 @@ def test_total_metrics_weighting():
 def test_empty_contour():
     """A slice that cuts nothing (recon3d passes ``[]``): no crash, plain JSON."""
     assert metrics([])["coverage"] == 1.0
-    m = metrics([], w1=[np.array([[0.0, 0.0], [1.0, 1.0]])], w3=[np.array([[0.0, 0.0], [1.0, 0.0]])])
+    m = metrics([], w1=[np.array([[0.0, 0.0], [1.0, 1.0]])], w3=[np.array([[0.0, 0.0], [1.0, 0.0]])],
+                w2=[np.array([[0.0, 0.0], [0.5, 0.0]])])
+    assert m["w2_arc_length"] == 0.0 and m["coverage"] == 1.0
     assert m["precision"] == 0.0 and m["hausdorff_detected_to_true"] is None
     assert m["w3_soundness"] == 0.0 and m["w3_off_contour"] == 1

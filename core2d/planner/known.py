@@ -73,6 +73,8 @@ class KnownContour:
     >>> k.add([[0.0, 0.0], [4.0, 0.0]]); k.add([[4.2, 0.1], [8.0, 0.0]])
     >>> k.covers([1.0, 0.0], [7.0, 0.0], tol=0.1), k.covers([7.0, 0.0], [1.0, 0.0], tol=0.1)
     (True, False)
+    >>> k.covers([3.0, 0.0], [1.0, 0.0], tol=0.1)  # one segment, the wrong way
+    False
     """
 
     def __init__(self, join: float):
@@ -109,6 +111,13 @@ class KnownContour:
         self._b = np.concatenate([self._b, pl[1:]])
         self._piece = np.concatenate([self._piece, np.full(len(pl) - 1, i)])
 
+    def with_pieces(self, pieces) -> "KnownContour":
+        """A copy of the map with ``pieces`` (each (k, 2) float) recorded too."""
+        out = KnownContour(self.join)
+        for pl in [*self.pieces, *pieces]:
+            out.add(pl)
+        return out
+
     def segments(self) -> tuple[np.ndarray, np.ndarray]:
         """(n, 2), (n, 2) float: start and end of every recorded segment."""
         return self._a, self._b
@@ -140,27 +149,29 @@ class KnownContour:
     def covers(self, a, b, tol: float) -> bool:
         """Is C_A^B known: a chain of pieces, each continuing the last within
         ``join``, leading from (within ``tol`` of) A to (within ``tol`` of) B
-        in the pieces' direction?"""
+        in the pieces' direction (B after A along the pieces)?"""
         if len(self._a) == 0:
             return False
-        near_a = _point_segments(np.asarray(a, float), self._a, self._b) <= tol
-        near_b = _point_segments(np.asarray(b, float), self._a, self._b) <= tol
+        pa, pb = np.asarray(a, float), np.asarray(b, float)
+        near_a = _point_segments(pa, self._a, self._b) <= tol
+        near_b = _point_segments(pb, self._a, self._b) <= tol
         if not near_a.any() or not near_b.any():
             return False
         first = np.asarray(self._first)
-        local = np.arange(len(self._a)) - first[self._piece]
-        last_b = np.full(len(self.pieces), -1)  # last segment of each piece near B
-        np.maximum.at(last_b, self._piece[near_b], local[near_b])
-        best = {}  # piece -> earliest segment reached
-        todo = [(int(self._piece[g]), int(local[g])) for g in np.flatnonzero(near_a)]
+        pos_b = np.arange(len(self._a)) + _param(pb, self._a, self._b)  # position along pieces
+        best_b = np.full(len(self.pieces), -np.inf)  # farthest position near B, per piece
+        np.maximum.at(best_b, self._piece[near_b], pos_b[near_b])
+        reached = {}  # piece -> earliest position reached
+        todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]))
+                for g in np.flatnonzero(near_a)]
         while todo:
-            i, k = todo.pop()
-            if best.get(i, 1 << 60) <= k:
+            i, pos = todo.pop()
+            if reached.get(i, np.inf) <= pos:
                 continue
-            best[i] = k
-            if last_b[i] >= k:
+            reached[i] = pos
+            if best_b[i] >= pos:
                 return True
-            todo.extend(self._next[i])
+            todo.extend((j, float(first[j] + k)) for j, k in self._next[i])
         return False
 
     def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> list[FreeLine]:
@@ -193,10 +204,15 @@ def _cross2(x, y):
     return x[..., 0] * y[..., 1] - x[..., 1] * y[..., 0]
 
 
-def _point_segments(p, a, b) -> np.ndarray:
-    """(n,) distances from point p to segments a -> b."""
+def _param(p, a, b) -> np.ndarray:
+    """(n,) position of the projection of p on each segment a -> b, in [0, 1]."""
     e = b - a
     l2 = np.einsum("ij,ij->i", e, e)
     with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.nan_to_num(np.clip(np.einsum("ij,ij->i", p - a, e) / l2, 0.0, 1.0))
-    return np.hypot(*(a + t[:, None] * e - p).T)
+        return np.nan_to_num(np.clip(np.einsum("ij,ij->i", p - a, e) / l2, 0.0, 1.0))
+
+
+def _point_segments(p, a, b) -> np.ndarray:
+    """(n,) distances from point p to segments a -> b."""
+    t = _param(p, a, b)
+    return np.hypot(*(a + t[:, None] * (b - a) - p).T)

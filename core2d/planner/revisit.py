@@ -1,56 +1,70 @@
 """A second look at dead ends, with everything the robot has recorded.
 
 An area that reached a dead end in the paper's flow (no Theorem 1 pass into
-G_i cap V_i, or a pass that found no new contact) is *deferred*, never W3:
-those dead ends say that the two recorded postures leave no pass, not that
-none exists. Once nothing else is left, every deferred area A_iB_i is looked
-at again against the robot's own map (:class:`KnownContour`):
+G_i cap V_i, a pass that found no new contact, or Area(G_i) = 0 while lines
+still cross the lid) is *deferred*, never W3 on the spot: those dead ends
+say that the recorded postures leave no pass, not that none exists. Once
+nothing else is left, every deferred area A_iB_i is looked at again against
+the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
 1. C_A^B has meanwhile been traced through other areas -> closed as traced.
-2. No straight line from F crosses the open lid L_A^B past the recorded
-   contour (:meth:`KnownContour.free_lines`) and the lid crosses no recorded
-   contour -> **W3, proven**: the contour behind a lid is reachable only
-   through the lid, and every line through it is blocked by real contour
-   the robot has touched. This extends Area(G_i) = 0 (§4.2.1) from one
-   posture to all lines through the lid.
-3. Otherwise a free line is a pass to try (another pass, another side; it
-   plays the role of Theorem 1's pass through L_{A0}^{B0} cap G_i cap V_i):
-   the probe is inserted along it from F. A new contact C (farther than
-   2 tol from everything recorded and than eps/2 from A and B) splits the
-   area into (A_i, C) and (C, B_i), which go back to the paper's flow.
-   The passes are spread over the lid and over the free directions
-   (:func:`passes`): the middle of the lid along the middle of its free
-   gap, then near each end steered towards that end (where the unknown
-   contour continues from the touched end), then the quarter points.
-4. After ``MAX_TRIES`` passes that found nothing new:
+2. The lid could be a W3 lid only if it crosses no recorded contour and
+   A_i, B_i were touched from its V_i side (:func:`~core2d.planner.areas.faces_V`).
+   Then, if no straight line from F crosses the lid past the recorded
+   contour farther than eps/2 from its touched ends (:func:`proof_lines`)
+   -> **W3, proven**: the contour behind a lid is reachable only through
+   the lid, and every line through it is blocked by real contour the robot
+   has touched. This extends Area(G_i) = 0 (§4.2.1) from the posture held
+   to every line through the lid.
+3. Otherwise every free line is a pass the robot can try (another pass,
+   another side: it plays the role of Theorem 1's pass through
+   L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
+   new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
+   everything recorded) splits the area into (A_i, C) and (C, B_i), which
+   go back to the paper's flow. The first passes are spread over the lid
+   and its free directions (:func:`passes`); then, if the lid could be W3,
+   one pass every eps/2 along the lid, up to ``MAX_SWEEP``.
+4. A lid that passed step 2 or the probing below is W3 only if it closes
+   a loop: a chain of recorded pieces and such lids leads from B_i round
+   to A_i, so A_i and B_i lie on one object and the lid bridges no islands
+   (several hidden pockets of one loop close it together).
+5. When no pass found anything new:
 
-   * a pass left without any contact -> ``open``: the lid is an opening
-     to F (a gap between separate objects, §3.2); nothing is written;
-   * the area was pinched (single probe detection with Area(G_i) = 0,
-     Fig. 6(b)) and every pass ended at a touched end of the lid (within
-     eps/2 of A or B) -> **W3**: the paper's Area(G_i) = 0, confirmed by
-     passes through the lid -- the lines the robot's map still allows
-     through a slit narrower than eps touch nothing beyond the lid's ends;
+   * one left through the lid without any contact -> ``open``: the lid is
+     an opening to F (a gap between separate objects, §3.2), nothing is
+     written;
+   * the lid could be W3 and every pass, one per eps/2 along it, ended at one
+     of its touched ends (within eps/2 of A_i or B_i) -> **W3 (step 4), probed at the
+     paper's resolution**: the free lines left are those that graze the
+     ends, as through a slit narrower than eps (Fig. 6(b)), and they touch
+     nothing the resolution can tell from A_i or B_i;
    * otherwise -> ``unknown``, reported with the lid in the result.
+
+A pass that touches reachable contour behind the lid farther than eps/2
+from its ends -- the wall right behind a lid laid along it in a slot
+narrower than eps -- finds a new contact, so such a lid is never W3.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from core2d.planner.areas import Area
+from core2d.planner.areas import Area, faces_V
 from core2d.planner.regions import Posture
 
-__all__ = ["revisit", "MAX_TRIES"]
+__all__ = ["revisit", "finish", "revisit_one", "lid_like", "closes_loop", "proof_lines", "passes",
+           "MAX_TRIES", "MAX_SWEEP"]
 
-#: passes through one lid that may find nothing new before it is called open
+#: spread passes (:func:`passes`) before the sweep at resolution eps
 MAX_TRIES = 6
+#: most passes of the sweep along one lid
+MAX_SWEEP = 48
 #: (position along the lid A -> B, which way to steer in the free gap)
-_PLAN = ((0.5, 0.0), (0.9, 1.0), (0.1, -1.0), (0.3, 0.0), (0.7, 0.0), (0.5, 1.0), (0.5, -1.0))
+_PLAN = ((0.5, 0.0), (0.9, 1.0), (0.1, -1.0), (0.3, 0.0), (0.7, 0.0), (0.5, 1.0))
 
 
 def passes(lines, a, b):
-    """Candidate passes ``(point, direction)`` through the lid, in the order
-    of ``_PLAN``: for each planned position the nearest free lid sample, its
+    """Spread passes ``(point, direction)`` through the lid, in the order of
+    ``_PLAN``: for each planned position the nearest free lid sample, its
     direction at the middle of the free gap (steer 0) or at 0.1 / 0.9 of it,
     whichever edge leans towards B (steer +1) or A (steer -1)."""
     out = []
@@ -62,9 +76,40 @@ def passes(lines, a, b):
             out.append((ln.point, ln.direction))
             continue
         d0, d1 = ln.turned(0.1), ln.turned(0.9)
-        toward_b = d0 if d0 @ ab > d1 @ ab else d1
-        out.append((ln.point, toward_b if steer > 0 else (d1 if toward_b is d0 else d0)))
+        toward_b, toward_a = (d0, d1) if d0 @ ab > d1 @ ab else (d1, d0)
+        out.append((ln.point, toward_b if steer > 0 else toward_a))
     return out
+
+
+def _sweep(lines, length, eps):
+    """One pass every eps/2 along the lid (the nearest free sample), at most
+    ``MAX_SWEEP``, alternately at 1/4 and 3/4 of its free gap."""
+    along = np.array([ln.along for ln in lines])
+    k = int(min(MAX_SWEEP, max(2, np.ceil(2 * length / eps))))
+    picks = [int(np.argmin(np.abs(along - f))) for f in (np.arange(k) + 0.5) / k]
+    return [(lines[i].point, lines[i].turned(0.25 + 0.5 * (n % 2))) for n, i in enumerate(picks)]
+
+
+def lid_like(run, area) -> bool:
+    """Step 2: the lid crosses no recorded contour and its ends were touched
+    from its V_i side."""
+    probe = run.probe
+    return (not run.known.crosses(area.a, area.b, probe.tip_zone)
+            and faces_V(area, probe.tip_zone, probe.tol))
+
+
+def closes_loop(known, area, tol) -> bool:
+    """Step 4: a chain of recorded pieces leads from B_i round to A_i."""
+    return known.covers(area.b, area.a, tol)
+
+
+def proof_lines(run, area):
+    """Free lines from F through the lid past the recorded contour, at lid
+    samples farther than eps/2 from the touched ends: the W3 proof of step 2
+    holds when there is none."""
+    probe = run.probe
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=probe.tip_zone,
+                                min_gap=probe.ang_tol)
 
 
 def _near_end(probe, area, point) -> bool:
@@ -77,19 +122,24 @@ def _new_contact(run, area, point) -> bool:
     return not _near_end(run.probe, area, point) and run.known.distance(point) > 2 * run.probe.tol
 
 
-def revisit_one(run, area) -> None:
-    """Look at one deferred area again; see the module doc."""
+def revisit_one(run, area):
+    """Look at one deferred area again (steps 1-3, 5 of the module doc).
+
+    Returns a W3 reason when the lid passed its proof or its probing and
+    waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
     if known.covers(area.a, area.b, 2 * probe.tol):
         return run.close(area, "traced", "C_A^B traced through other areas")
-    crossing = known.crosses(area.a, area.b, probe.tip_zone)
-    lines = known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=probe.tol,
-                             min_gap=probe.ang_tol)
+    candidate = lid_like(run, area)
+    lines = proof_lines(run, area)
     if not lines:
-        if crossing:
-            return run.close(area, "open", "the lid crosses recorded contour")
-        return run.close(area, "W3", "no line from F crosses the lid past the recorded contour")
-    plan = passes(lines, area.a, area.b)[area.tries:MAX_TRIES]
+        if candidate:
+            return "no line from F crosses the lid past the recorded contour"
+        return run.close(area, "unknown", "no line crosses the lid, but it crosses recorded "
+                                          "contour or was touched from its other side")
+    plan = passes(lines, area.a, area.b)
+    if candidate:
+        plan += _sweep(lines, area.dist, run.eps)
     ends_only, escaped = True, False
     for point, direction in plan:
         if not run.budget():
@@ -109,14 +159,36 @@ def revisit_one(run, area) -> None:
     note = f"{area.tries} passes through the lid found nothing new"
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
-    if area.pinched and ends_only:
-        return run.close(area, "W3", "single probe detection, Area(G) = 0; every pass through "
-                                     "the lid ended at its touched ends")
+    if candidate and ends_only:
+        return note + "; each ended at a touched end (resolution eps)"
     run.close(area, "unknown", note)
 
 
 def revisit(run) -> None:
-    """Look at every deferred area of ``run`` again (see the module doc)."""
+    """Look at every deferred area of ``run`` again (see the module doc).
+
+    Lids ready for W3 wait in ``run.waiting`` until they close a loop of the
+    map together with all waiting lids (step 4); :func:`finish` reports
+    those still waiting when nothing more can change."""
     todo, run.deferred = run.deferred, []
     for area in todo:
-        revisit_one(run, area)
+        why = revisit_one(run, area)
+        if why is not None:
+            run.waiting.append((area, why))
+    if not run.waiting:
+        return
+    joint = run.known.with_pieces([np.stack([a.a, a.b]) for a, _ in run.waiting])
+    still = []
+    for area, why in run.waiting:
+        if closes_loop(joint, area, 2 * run.probe.tol):
+            run.close(area, "W3", why)
+        else:
+            still.append((area, why))
+    run.waiting = still
+
+
+def finish(run) -> None:
+    """Report the lids still waiting for a loop as unknown."""
+    for area, why in run.waiting:
+        run.close(area, "unknown", why + ", but it closes no loop of recorded contour")
+    run.waiting = []

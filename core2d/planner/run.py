@@ -34,9 +34,9 @@ from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.revisit import revisit
+from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.regions import Posture, near_probe
-from core2d.planner.tracing import attach_pivot_G, plan_sides, trace_side
+from core2d.planner.tracing import attach_pivot_G, is_internal, plan_sides, trace_side
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
@@ -108,6 +108,7 @@ class _Run:
         self.result = SliceResult()
         self.queue = deque()
         self.deferred = []
+        self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.known = KnownContour(join=probe.tip_zone)
 
     def add(self, area):
@@ -173,8 +174,13 @@ class _Run:
             return self.defer(area, why)
         c = reading.tip_contact.point
         pose_c = Posture(reading.joint, reading.direction)
-        if _same(c, area.a, 2 * probe.tol) or _same(c, area.b, 2 * probe.tol):
+        if _same(c, area.a, probe.tip_zone) or _same(c, area.b, probe.tip_zone):
+            # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
+        if self.known.distance(c) <= 2 * probe.tol:
+            # contour the robot has recorded already (Ext, or Int traced through
+            # other areas): nothing new to start the search from
+            return self.defer(area, "Theorem 1 pass touched recorded contour")
         joint_i = reading.joint.copy()
         local = None if area.escape else bisection(probe, area, G, reading)
         if local is None:
@@ -185,16 +191,14 @@ class _Run:
         """Single probe detection with Area(G_i) = 0 (Fig. 6(b), §4.2.1): the
         paper's W3 -- the pass the probe held is the only one through its
         tip. W3 at once when the robot's map agrees that no line from F
-        crosses the lid (:meth:`KnownContour.free_lines`). Where lines remain
-        (a slit narrower than eps that the pivot cannot resolve, or Fig. 6(b)
-        met inside a slot narrower than eps, where §3.2 fails) the area is
-        marked pinched and deferred: :mod:`core2d.planner.revisit` tries
-        those lines before it decides."""
+        crosses the lid (:func:`proof_lines`). Where lines remain (a slit
+        narrower than eps that the pivot about the tip cannot resolve, or
+        Fig. 6(b) met inside a slot narrower than eps, where §3.2 fails) the
+        area is deferred: :mod:`core2d.planner.revisit` tries those lines."""
         probe = self.probe
-        if not self.known.free_lines(area.a, area.b, spacing=self.eps / 2, margin=probe.tol,
-                                     min_gap=probe.ang_tol):
+        if (lid_like(self, area) and closes_loop(self.known, area, 2 * probe.tol)
+                and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
-        area.pinched = True
         return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")
 
     def escape(self, area, c, pose_c, rule="escape"):
@@ -208,6 +212,8 @@ class _Run:
     def trace(self, area, G, joint_i, local):
         probe = self.probe
         sides, q = plan_sides(local)
+        if q is not None and not is_internal(q.point, area, G, joint_i):
+            q = None  # Fig. 12(c) needs Q on Int(A_iB_i) (Fig. 13's test); Ext: no split
         pose_d = Posture(local.reading.joint, local.reading.direction)
         kids = []
         dq = None
@@ -269,6 +275,7 @@ def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -
         revisit(run)  # dead ends, with everything recorded so far
         if not run.queue:
             break
+    finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out
         run.close(area, "unknown", run.result.areas[area.index].note)
     stats = run.result.stats = probe.stats

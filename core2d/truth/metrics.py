@@ -176,7 +176,7 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
         dl = d_det = d_det_pieces = np.zeros(0)
     w2_arcs = lid_arcs(loops, result.w2, samp, resolution=spacing)
     # an arc longer than the rest of its loop is a reversed chord, not a W2 area
-    w2_long = w2_arcs["arc_length"] > 0.5 * samp.loop_lengths[w2_arcs["loop"]]
+    w2_long = w2_arcs["arc_length"] > 0.5 * np.append(samp.loop_lengths, 0.0)[w2_arcs["loop"]]
     behind_w2 = w2_arcs["member"][~w2_long].any(axis=0)
     covered = reach & ((d_true <= tol) | behind_w2)
     reachable_length = float(w[reach].sum())

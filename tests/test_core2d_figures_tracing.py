@@ -78,7 +78,7 @@ def test_fig4b_pulling_traces_to_A_and_B(which, toward_B):
     v, tau = trace_direction(t_star, toward_B)
     assert tau == (-1 if toward_B else +1)
     joint0 = probe.joint.copy()
-    lines, new, cases = trace_side(probe, area, G, joint_i, local, toward_B, always)
+    lines, new, cases, _ = trace_side(probe, area, G, joint_i, local, toward_B, always)
     assert cases == ["case1"] and new == []
     assert probe.stats.pushes == 0
     moved = probe.joint - joint0
@@ -98,7 +98,7 @@ def test_fig4_both_sides_cover_the_pocket():
         if k:
             assert _reestablish(probe, Posture(local.reading.joint,
                                                local.reading.direction)).tip_contact
-        more, new, cases = trace_side(probe, area, G, joint_i, local, toward_B, always)
+        more, new, cases, _ = trace_side(probe, area, G, joint_i, local, toward_B, always)
         assert cases == ["case1"]
         lines += more
     target = chain(loops, area.a, area.b)
@@ -111,7 +111,7 @@ def test_fig4_sliding_along_a_straight_edge_is_not_a_jump():
     area = vertical_area(probe, (20, 60), (80, 60))
     r, G, _ = initial_pass(probe, area)
     local = bisection(probe, area, G, r)
-    _, new, cases = trace_side(probe, area, G, r.joint.copy(), local, True, always)
+    _, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, True, always)
     jumps = [kid for kid in new if kid.rule == "case2-1"]  # (P_1st, P_2nd), rule (ii)
     for kid in jumps:  # a jump skips contour: the contour is not the chord
         skipped = chain(loops, kid.a, kid.b)
@@ -156,7 +156,7 @@ def test_fig10b_stop_at_the_T_boundary(top, a, b, Y2, sides):
     assert (r.blocked_cw, r.blocked_ccw) == (Y2 == 1, Y2 == -1)
     assert plan_sides(local) == (sides, None)
     # Theorem 4 (B)/(C): one pulling trace up the slope, to the other end
-    lines, new, cases = trace_side(probe, area, G, joint_i, local, sides[0], always)
+    lines, new, cases, _ = trace_side(probe, area, G, joint_i, local, sides[0], always)
     assert cases == ["case1"] and probe.stats.pushes == 0
     assert _uncovered(chain(loops, area.a, area.b), lines, EPS / 2) < EPS / 2
 
@@ -189,7 +189,7 @@ def _hill(top, a, b, start, toward_B):
     local = bisection(probe, area, G, r)
     assert (local.Y1, local.Y2) == (1, 0) and local.point[1] < 36
     joint_i = r.joint.copy()
-    lines, new, cases = trace_side(probe, area, G, joint_i, local, toward_B, always)
+    lines, new, cases, _ = trace_side(probe, area, G, joint_i, local, toward_B, always)
     return loops, area, G, joint_i, lines, new, cases
 
 

@@ -80,20 +80,23 @@ class KnownContour:
     def __init__(self, join: float):
         self.join = float(join)
         self.pieces: list[np.ndarray] = []
+        self.poses: list[tuple] = []  # (posture at the first point, at the last) or (None, None)
         self._a = np.zeros((0, 2))
         self._b = np.zeros((0, 2))
         self._piece = np.zeros(0, dtype=np.int64)  # piece of every segment
         self._first = []  # index of each piece's first segment
         self._next = []  # piece i -> [(j, k)]: piece j passes piece i's end at its segment k
 
-    def add(self, polyline) -> None:
-        """Record a piece, (k, 2) float with k >= 2, material on its right."""
+    def add(self, polyline, pose_first=None, pose_last=None) -> None:
+        """Record a piece, (k, 2) float with k >= 2, material on its right,
+        with the postures that touched its first and last points."""
         pl = np.asarray(polyline, dtype=np.float64).reshape(-1, 2)
         if len(pl) < 2:
             return
         i = len(self.pieces)
         ends = np.array([p[-1] for p in self.pieces]).reshape(-1, 2)
         self.pieces.append(pl)
+        self.poses.append((pose_first, pose_last))
         self._first.append(len(self._a))
         # pieces that continue the new one, and old pieces the new one continues
         nxt = []
@@ -114,9 +117,29 @@ class KnownContour:
     def with_pieces(self, pieces) -> "KnownContour":
         """A copy of the map with ``pieces`` (each (k, 2) float) recorded too."""
         out = KnownContour(self.join)
-        for pl in [*self.pieces, *pieces]:
+        for pl, (p0, p1) in zip(self.pieces, self.poses):
+            out.add(pl, p0, p1)
+        for pl in pieces:
             out.add(pl)
         return out
+
+    def loose_ends(self):
+        """Where the recorded contour stops. Every piece runs with the
+        material on its right, so unknown contour begins where a piece ends
+        and no other piece passes within ``join`` (a loose end), and arrives
+        where a piece starts and none passes (a loose start).
+
+        Returns ``(ends, starts)``: lists of (point (2,) float, Posture or
+        None, piece index)."""
+        ends, starts = [], []
+        for i, pl in enumerate(self.pieces):
+            if not self._next[i]:
+                ends.append((pl[-1], self.poses[i][1], i))
+            d = _point_segments(pl[0], self._a, self._b)
+            d[self._piece == i] = np.inf
+            if not (d <= self.join).any():
+                starts.append((pl[0], self.poses[i][0], i))
+        return ends, starts
 
     def segments(self) -> tuple[np.ndarray, np.ndarray]:
         """(n, 2), (n, 2) float: start and end of every recorded segment."""
@@ -150,29 +173,58 @@ class KnownContour:
         """Is C_A^B known: a chain of pieces, each continuing the last within
         ``join``, leading from (within ``tol`` of) A to (within ``tol`` of) B
         in the pieces' direction (B after A along the pieces)?"""
+        return self.chain(a, b, tol) is not None
+
+    def chain(self, a, b, tol: float):
+        """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)
+        polyline, or None when no chain of pieces leads there."""
         if len(self._a) == 0:
-            return False
+            return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
         near_a = _point_segments(pa, self._a, self._b) <= tol
         near_b = _point_segments(pb, self._a, self._b) <= tol
         if not near_a.any() or not near_b.any():
-            return False
+            return None
         first = np.asarray(self._first)
         pos_b = np.arange(len(self._a)) + _param(pb, self._a, self._b)  # position along pieces
         best_b = np.full(len(self.pieces), -np.inf)  # farthest position near B, per piece
         np.maximum.at(best_b, self._piece[near_b], pos_b[near_b])
-        reached = {}  # piece -> earliest position reached
-        todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]))
-                for g in np.flatnonzero(near_a)]
+        reached, came = {}, {}  # piece -> earliest position reached, and from which piece
+        todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]),
+                 None) for g in np.flatnonzero(near_a)]
         while todo:
-            i, pos = todo.pop()
+            i, pos, prev = todo.pop()
             if reached.get(i, np.inf) <= pos:
                 continue
-            reached[i] = pos
+            reached[i], came[i] = pos, prev
             if best_b[i] >= pos:
-                return True
-            todo.extend((j, float(first[j] + k)) for j, k in self._next[i])
-        return False
+                return self._walk(i, best_b[i], reached, came)
+            todo.extend((j, float(first[j] + k), i) for j, k in self._next[i])
+        return None
+
+    def _walk(self, last, end_pos, reached, came) -> np.ndarray:
+        """Points of the chain that ends in piece ``last`` at ``end_pos``:
+        each piece from where it was reached to its end (or to B)."""
+        parts, i, stop, seen = [], last, end_pos, set()
+        while i is not None and i not in seen:  # a re-reached piece can close a cycle
+            seen.add(i)
+            parts.append(self._span(i, reached[i], stop))
+            i = came[i]
+            if i is not None:
+                stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
+        return np.concatenate(parts[::-1])
+
+    def _span(self, i, start, stop) -> np.ndarray:
+        """Points of piece ``i`` between global segment positions ``start`` and ``stop``."""
+        pl, g0 = self.pieces[i], self._first[i]
+        s0, s1 = start - g0, max(stop - g0, start - g0)
+
+        def at(x):
+            k = int(min(max(np.floor(x), 0), len(pl) - 2))
+            return pl[k] + (x - k) * (pl[k + 1] - pl[k])
+
+        inner = pl[int(np.floor(s0)) + 1:int(np.ceil(s1))]
+        return np.vstack([at(s0), inner, at(s1)])
 
     def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> list[FreeLine]:
         """Lines from F crossing the open lid A->B from its V side (Def. 3)

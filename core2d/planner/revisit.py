@@ -16,18 +16,23 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    the lid, and every line through it is blocked by real contour the robot
    has touched. This extends Area(G_i) = 0 (§4.2.1) from the posture held
    to every line through the lid.
-3. Otherwise every free line is a pass the robot can try (another pass,
-   another side: it plays the role of Theorem 1's pass through
+3. Otherwise every free line is a pass the robot can try -- from V_i, or
+   from the lid's other side when nothing reaches it from V_i (a chord
+   between two corners that runs inside material, with the contour between
+   them facing a gap) -- another pass, another side: it plays the role of Theorem 1's pass through
    L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
    new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
    everything recorded) splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
    one pass every eps/2 along the lid, up to ``MAX_SWEEP``.
-4. A lid that passed step 2 or the probing below is W3 only if it closes
-   a loop: a chain of recorded pieces and such lids leads from B_i round
-   to A_i, so A_i and B_i lie on one object and the lid bridges no islands
-   (several hidden pockets of one loop close it together).
+4. A lid that passed step 2 or the probing below is W3 only if the probe
+   can hold it as a posture (:func:`holds_lid`: a W3 lid never passes
+   through the solid) and if it closes
+   a loop (:func:`closes_loop`): a chain of recorded pieces and such lids
+   leads from B_i round to A_i, so A_i and B_i lie on one object and the lid
+   bridges no islands (several hidden pockets of one loop close it
+   together), and the loop encloses material (runs clockwise).
 5. When no pass found anything new:
 
    * one left through the lid without any contact -> ``open``: the lid is
@@ -49,9 +54,9 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.areas import Area, faces_V
-from core2d.planner.regions import Posture
+from core2d.planner.regions import Posture, near_probe
 
-__all__ = ["revisit", "finish", "revisit_one", "lid_like", "closes_loop", "proof_lines", "passes",
+__all__ = ["revisit", "finish", "revisit_one", "lid_like", "holds_lid", "closes_loop", "proof_lines", "passes",
            "MAX_TRIES", "MAX_SWEEP"]
 
 #: spread passes (:func:`passes`) before the sweep at resolution eps
@@ -98,9 +103,42 @@ def lid_like(run, area) -> bool:
             and faces_V(area, probe.tip_zone, probe.tol))
 
 
+def holds_lid(run, area) -> bool:
+    """Can the probe hold the lid as a posture? "A W3 lid is a posture the
+    probe actually held": the single probe detection of Fig. 6, made on
+    purpose. The probe is inserted from F along the lid's line (shifted tol
+    into V_i), once from beyond each end; the lid is held when the tip
+    touches the far end and the probe passes the near one, both within
+    eps/2. A lid laid through material -- across a wall the robot has not
+    recorded -- stops the tip short of its far end."""
+    probe = run.probe
+    a, b = np.asarray(area.a, float), np.asarray(area.b, float)
+    u = (b - a) / area.dist
+    shift = probe.tol * np.array([-u[1], u[0]])  # towards V_i (Definition 3)
+    for near, far, d in ((a, b, u), (b, a, -u)):
+        if not run.budget():
+            return False
+        probe.approach(far + shift, d)
+        r = probe.insert(2.5 * probe.radius)
+        tip = r.tip_contact
+        if tip is not None and np.hypot(*(tip.point - far)) <= probe.tip_zone and near_probe(
+                near, r.joint, r.direction, probe.length, probe.tip_zone):
+            return True
+    return False
+
+
 def closes_loop(known, area, tol) -> bool:
-    """Step 4: a chain of recorded pieces leads from B_i round to A_i."""
-    return known.covers(area.b, area.a, tol)
+    """Step 4: a chain of recorded pieces leads from B_i round to A_i, and the
+    loop it makes with the lid runs clockwise: every recorded piece and the
+    lid have the material on their right, so a W3 lid's loop encloses
+    material and the pocket behind the lid -- not free space (a lid laid
+    inside a slot narrower than eps, whose chain runs down the slot's wall,
+    makes a counter-clockwise loop around the free half of the slot)."""
+    path = known.chain(area.b, area.a, tol)
+    if path is None:
+        return False
+    x, y = path[:, 0], path[:, 1]  # closed by the lid A -> B
+    return float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) < 0
 
 
 def proof_lines(run, area):
@@ -132,14 +170,16 @@ def revisit_one(run, area):
         return run.close(area, "traced", "C_A^B traced through other areas")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
-    if not lines:
+    if not lines and candidate:
+        return "no line from F crosses the lid past the recorded contour"
+    if lines:
+        plan = passes(lines, area.a, area.b)
         if candidate:
-            return "no line from F crosses the lid past the recorded contour"
-        return run.close(area, "unknown", "no line crosses the lid, but it crosses recorded "
-                                          "contour or was touched from its other side")
-    plan = passes(lines, area.a, area.b)
-    if candidate:
-        plan += _sweep(lines, area.dist, run.eps)
+            plan += _sweep(lines, area.dist, run.eps)
+    else:  # nothing reaches the lid from V_i: try its other side
+        back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
+                                    margin=probe.tip_zone, min_gap=probe.ang_tol)
+        plan = passes(back, area.b, area.a) if back else []
     ends_only, escaped = True, False
     for point, direction in plan:
         if not run.budget():
@@ -157,6 +197,9 @@ def revisit_one(run, area):
         escaped |= c is None
         ends_only &= c is not None and _near_end(probe, area, c.point)
     note = f"{area.tries} passes through the lid found nothing new"
+    if not plan:
+        return run.close(area, "unknown", "no line reaches the lid from either side, and it "
+                                          "crosses recorded contour or was touched from its other side")
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
     if candidate and ends_only:
@@ -173,8 +216,12 @@ def revisit(run) -> None:
     todo, run.deferred = run.deferred, []
     for area in todo:
         why = revisit_one(run, area)
-        if why is not None:
-            run.waiting.append((area, why))
+        if why is None:
+            continue
+        if holds_lid(run, area):
+            run.waiting.append((area, why + "; the probe held the lid"))
+        else:
+            run.close(area, "unknown", why + ", but the probe cannot hold the lid")
     if not run.waiting:
         return
     joint = run.known.with_pieces([np.stack([a.a, a.b]) for a, _ in run.waiting])

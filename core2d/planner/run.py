@@ -21,6 +21,8 @@ An area whose contour C_A^B has meanwhile been traced through other areas
 a pass that finds no new contact -- never makes W3: the area is deferred,
 and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).
+Finally :func:`core2d.planner.audit.audit` registers the contour that no area
+holds any more (loose ends of the recorded contour: islands, §3.2).
 Areas are processed breadth first until none is left or a budget is hit.
 """
 from __future__ import annotations
@@ -31,6 +33,7 @@ from collections import deque
 import numpy as np
 
 from core2d.planner.areas import Area, pivot_G, register
+from core2d.planner.audit import audit
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
@@ -109,6 +112,7 @@ class _Run:
         self.queue = deque()
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
+        self.audits = 0
         self.known = KnownContour(join=probe.tip_zone)
 
     def add(self, area):
@@ -125,7 +129,7 @@ class _Run:
             lid = np.stack([area.a, area.b])
             getattr(self.result, outcome.lower()).append(lid)
             if outcome != "unknown":
-                self.known.add(lid)
+                self.known.add(lid, area.pose_a, area.pose_b)
 
     def defer(self, area, why):
         """A dead end: the area stays unknown and is looked at again later."""
@@ -133,11 +137,12 @@ class _Run:
         rec.outcome, rec.note = "deferred", why
         self.deferred.append(area)
 
-    def traced(self, polylines) -> float:
-        """Record W1 polylines (material on the right); their total length."""
+    def traced(self, polylines, ends) -> float:
+        """Record W1 polylines (material on the right) and the postures that
+        touched their ends; their total length."""
         self.result.w1.extend(polylines)
-        for pl in polylines:
-            self.known.add(pl)
+        for pl, (pose_first, pose_last) in zip(polylines, ends):
+            self.known.add(pl, pose_first, pose_last)
         return float(sum(np.hypot(*np.diff(pl, axis=0).T).sum() for pl in polylines))
 
     def children(self, area, kids, traced=0.0):
@@ -228,8 +233,9 @@ class _Run:
                                      area.pose_a if not toward_B else area.pose_b,
                                      not toward_B, area.index, "limit", area.depth + 1))
                 continue
-            lines, new, _ = trace_side(probe, area, G, joint_i, local, toward_B, self.budget)
-            traced += self.traced(lines)
+            lines, new, _, ends = trace_side(probe, area, G, joint_i, local, toward_B,
+                                             self.budget)
+            traced += self.traced(lines, ends)
             kids.extend(new)
         if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)
             fin_is_A = sides[0]  # the side not traced
@@ -270,10 +276,11 @@ def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -
     while True:
         while run.queue and budget():
             run.process(run.queue.popleft())
-        if run.queue or not run.deferred or not budget():
+        if run.queue or not budget():
             break
-        revisit(run)  # dead ends, with everything recorded so far
-        if not run.queue:
+        if run.deferred:
+            revisit(run)  # dead ends, with everything recorded so far
+        elif not audit(run):  # contour no area holds any more
             break
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out

@@ -62,9 +62,11 @@ def is_internal(p2, area, G, joint_i):
 
 
 def trace_side(probe, area, G, joint_i, local, toward_B, budget):
-    """Trace one side from D_i; returns (w1 polylines, new areas, cases).
+    """Trace one side from D_i; returns (w1 polylines, new areas, cases, ends).
 
-    The polylines are oriented like C_{A_i}^{B_i} (material on the right).
+    The polylines are oriented like C_{A_i}^{B_i} (material on the right);
+    ``ends`` holds, per polyline, the postures (Posture, Posture) that touched
+    its first and its last point.
 
     Parameters
     ----------
@@ -83,9 +85,10 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
     pose_fin = area.pose_a if fin_is_A else area.pose_b
     p_other = area.b if fin_is_A else area.a
     pose_other = area.pose_b if fin_is_A else area.pose_a
-    polylines, new, cases = [], [], []
+    polylines, new, cases, poses = [], [], [], []
     depth = area.depth + 1
     pieces = [local.point[None]]
+    first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     while budget():
         r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other,
                         stop_joint=pose_fin.joint, leave_joint=pose_other.joint)
@@ -108,7 +111,8 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
                 new.append(kid)
                 if r.contacts[0].face == TIP:
                     polylines.append(np.concatenate(pieces))
-                    pieces = [p2[None]]
+                    poses.append((first, pose1))
+                    pieces, first = [p2[None]], pose2
                     continue  # tracing continues for the remaining area
                 new.append(register(p2, pose2, p_fin, pose_fin, fin_is_A, area.index,
                                     "case2-1", depth))
@@ -142,6 +146,10 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
         new.append(register(pieces[-1][-1], Posture(probe.joint.copy(), probe.direction),
                             p_fin, pose_fin, fin_is_A, area.index, "limit", depth))
     polylines.append(np.concatenate(pieces))
+    poses.append((first, Posture(probe.joint.copy(), probe.direction)))
     # W1 runs like C_A^B, material on the right: from D_i towards B_i as
-    # traced, towards A_i reversed
-    return [p if toward_B else p[::-1] for p in polylines if len(p) >= 2], new, cases
+    # traced, towards A_i reversed (and so do the postures at its two ends)
+    keep = [k for k, p in enumerate(polylines) if len(p) >= 2]
+    lines = [polylines[k] if toward_B else polylines[k][::-1] for k in keep]
+    ends = [poses[k] if toward_B else poses[k][::-1] for k in keep]
+    return lines, new, cases, ends

@@ -1,0 +1,56 @@
+"""The last look: contour that no area holds any more.
+
+Every piece the robot records runs with the material on its right
+(:class:`~core2d.planner.known.KnownContour`), so on a closed contour the
+unknown parts are exactly the stretches from a *loose end* (a piece ends and
+nothing recorded continues it) to a *loose start* (a piece starts and
+nothing recorded leads into it). On one object the areas A_iB_i of the paper
+hold those stretches; with several objects in a slice (islands, §3.2) the
+bootstrap pairs contacts across objects, and a stretch can end up in no
+area's C_A^B at all.
+
+When nothing else is left, :func:`audit` pairs every loose end E with the
+nearest loose start S whose pair (E, S) the robot has not registered yet,
+and registers (E, S) as an unknown area (rule ``"audit"``) with the
+postures that touched E and S: it goes through the paper's flow like any
+other. The robot uses only its own records.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from core2d.planner.areas import Area
+
+__all__ = ["audit", "MAX_AUDITS"]
+
+#: rounds of the audit in one run
+MAX_AUDITS = 4
+
+
+def _registered(run, e, s) -> bool:
+    same = run.probe.tip_zone
+    return any(np.hypot(*(rec.a - e)) <= same and np.hypot(*(rec.b - s)) <= same
+               for rec in run.result.areas)
+
+
+def audit(run) -> int:
+    """Register an area for every loose end of the map; returns how many."""
+    if run.audits >= MAX_AUDITS:
+        return 0
+    run.audits += 1
+    ends, starts = run.known.loose_ends()
+    used, added = set(), 0
+    for e, pose_e, _ in ends:
+        if pose_e is None:
+            continue
+        order = np.argsort([np.hypot(*(s - e)) for s, _, _ in starts]) if starts else []
+        for m in order:
+            s, pose_s, _ = starts[m]
+            if m in used or pose_s is None or _registered(run, e, s):
+                continue
+            used.add(m)
+            run.add(Area(np.asarray(e, float), np.asarray(s, float), pose_e, pose_s,
+                         rule="audit"))
+            added += 1
+            break
+    return added

@@ -5,9 +5,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core2d.planner.regions import Posture, in_V
+from core2d.planner.regions import Posture
 
-__all__ = ["Area", "register", "pivot_G", "faces_V"]
+__all__ = ["Area", "register", "pivot_G"]
 
 
 @dataclass
@@ -53,24 +53,6 @@ class Area:
     @property
     def single(self) -> bool:
         return self.pose_a is self.pose_b
-
-
-def faces_V(area, back: float, tol: float) -> bool:
-    """Were A_i and B_i touched from V_i (Definition 3)? The probe just behind
-    each touched end (``back`` along its posture, towards the joint) lies on
-    the free side, so it must not lie clearly (farther than ``tol``) on the
-    other side of L_{A_i}^{B_i}; a W3 lid whose probes lie on its other side
-    is oriented the wrong way round, and what it would hide is not behind
-    it. A single posture lying along the lid passes."""
-    if area.single or area.pose_a is area.pose_b:
-        return True
-    ok = True
-    for p, pose in ((area.a, area.pose_a), (area.b, area.pose_b)):
-        behind = np.asarray(p, float) - back * np.asarray(pose.direction, float)
-        ab, w = area.b - area.a, behind - area.a
-        near = abs(ab[0] * w[1] - ab[1] * w[0]) <= tol * area.dist  # within tol of the line
-        ok &= bool(near or in_V(behind, area.a, area.b))
-    return ok
 
 
 def register(p_first, pose_first, p_end, pose_end, fin_is_A: bool, parent, rule, depth):

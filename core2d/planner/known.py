@@ -63,9 +63,11 @@ class KnownContour:
     Parameters
     ----------
     join : float
-        A piece passing within ``join`` of another piece's last point
-        continues it (the paper's resolution: contacts within eps/2 are one
-        contact).
+        A piece passing within ``join`` of another piece's last point, and
+        turning there by less than 120 degrees, continues it. (Gaps shorter
+        than eps are W2 at the paper's resolution; the facing walls of two
+        objects across a gap run antiparallel, so a chain does not hop
+        between them.)
 
     Examples
     --------
@@ -101,15 +103,17 @@ class KnownContour:
         # pieces that continue the new one, and old pieces the new one continues
         nxt = []
         if len(self._a):
-            d = _point_segments(pl[-1], self._a, self._b)
-            for j in np.unique(self._piece[d <= self.join]):
-                k = int(np.argmax(d[self._first[j]:] <= self.join))
-                nxt.append((int(j), k))
+            ok = (_point_segments(pl[-1], self._a, self._b) <= self.join) & _turns(
+                _end_direction(pl, self.join), self._b - self._a)
+            for j in np.unique(self._piece[ok]):
+                nxt.append((int(j), int(np.argmax(ok[self._first[j]:]))))
         self._next.append(nxt)
         for j in range(len(ends)):
-            d = _point_segments(ends[j], pl[:-1], pl[1:])
-            if (d <= self.join).any():
-                self._next[j].append((i, int(np.argmax(d <= self.join))))
+            other = self.pieces[j]
+            ok = (_point_segments(ends[j], pl[:-1], pl[1:]) <= self.join) & _turns(
+                _end_direction(other, self.join), pl[1:] - pl[:-1])
+            if ok.any():
+                self._next[j].append((i, int(np.argmax(ok))))
         self._a = np.concatenate([self._a, pl[:-1]])
         self._b = np.concatenate([self._b, pl[1:]])
         self._piece = np.concatenate([self._piece, np.full(len(pl) - 1, i)])
@@ -175,9 +179,10 @@ class KnownContour:
         in the pieces' direction (B after A along the pieces)?"""
         return self.chain(a, b, tol) is not None
 
-    def chain(self, a, b, tol: float):
+    def chain(self, a, b, tol: float, exclude=()):
         """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)
-        polyline, or None when no chain of pieces leads there."""
+        polyline, or None when no chain of pieces leads there; pieces whose
+        index is in ``exclude`` are not used."""
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
@@ -192,9 +197,10 @@ class KnownContour:
         reached, came = {}, {}  # piece -> earliest position reached, and from which piece
         todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]),
                  None) for g in np.flatnonzero(near_a)]
+        skip = set(exclude)
         while todo:
             i, pos, prev = todo.pop()
-            if reached.get(i, np.inf) <= pos:
+            if i in skip or reached.get(i, np.inf) <= pos:
                 continue
             reached[i], came[i] = pos, prev
             if best_b[i] >= pos:
@@ -250,6 +256,22 @@ class KnownContour:
             toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid
             out.append(FreeLine(p, toward, float(w), float(f)))
         return out
+
+
+def _end_direction(pl, span) -> np.ndarray:
+    """Direction of a piece's last ``span`` (its first point if shorter): the
+    final point may be a touched end a hair behind the last contact."""
+    back = np.hypot(*(pl - pl[-1]).T)
+    far = np.flatnonzero(back >= span)
+    return pl[-1] - pl[far[-1] if len(far) else 0]
+
+
+def _turns(d, e) -> np.ndarray:
+    """(n,) bool: direction e turns less than 120 degrees from direction d."""
+    e = np.asarray(e, float).reshape(-1, 2)
+    n = np.hypot(*e.T) * np.hypot(*d)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.nan_to_num((e @ d) / n, nan=1.0) > -0.5
 
 
 def _cross2(x, y):

@@ -8,9 +8,8 @@ nothing else is left, every deferred area A_iB_i is looked at again against
 the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
 1. C_A^B has meanwhile been traced through other areas -> closed as traced.
-2. The lid could be a W3 lid only if it crosses no recorded contour and
-   A_i, B_i were touched from its V_i side (:func:`~core2d.planner.areas.faces_V`).
-   Then, if no straight line from F crosses the lid past the recorded
+2. The lid could be a W3 lid only if it crosses no recorded contour
+   (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
    contour farther than eps/2 from its touched ends (:func:`proof_lines`)
    -> **W3, proven**: the contour behind a lid is reachable only through
    the lid, and every line through it is blocked by real contour the robot
@@ -32,7 +31,8 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    a loop (:func:`closes_loop`): a chain of recorded pieces and such lids
    leads from B_i round to A_i, so A_i and B_i lie on one object and the lid
    bridges no islands (several hidden pockets of one loop close it
-   together), and the loop encloses material (runs clockwise).
+   together), and the loop encloses material (runs clockwise, at least
+   eps/4 thick).
 5. When no pass found anything new:
 
    * one left through the lid without any contact -> ``open``: the lid is
@@ -53,7 +53,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d.planner.areas import Area, faces_V
+from core2d.planner.areas import Area
 from core2d.planner.regions import Posture, near_probe
 
 __all__ = ["revisit", "finish", "revisit_one", "lid_like", "holds_lid", "closes_loop", "proof_lines", "passes",
@@ -96,11 +96,8 @@ def _sweep(lines, length, eps):
 
 
 def lid_like(run, area) -> bool:
-    """Step 2: the lid crosses no recorded contour and its ends were touched
-    from its V_i side."""
-    probe = run.probe
-    return (not run.known.crosses(area.a, area.b, probe.tip_zone)
-            and faces_V(area, probe.tip_zone, probe.tol))
+    """Step 2: the lid crosses no recorded contour."""
+    return not run.known.crosses(area.a, area.b, run.probe.tip_zone)
 
 
 def holds_lid(run, area) -> bool:
@@ -127,18 +124,22 @@ def holds_lid(run, area) -> bool:
     return False
 
 
-def closes_loop(known, area, tol) -> bool:
+def closes_loop(known, area, tol, width, exclude=()) -> bool:
     """Step 4: a chain of recorded pieces leads from B_i round to A_i, and the
-    loop it makes with the lid runs clockwise: every recorded piece and the
-    lid have the material on their right, so a W3 lid's loop encloses
-    material and the pocket behind the lid -- not free space (a lid laid
-    inside a slot narrower than eps, whose chain runs down the slot's wall,
-    makes a counter-clockwise loop around the free half of the slot)."""
-    path = known.chain(area.b, area.a, tol)
+    loop it makes with the lid runs clockwise around material at least
+    ``width`` thick: every recorded piece and the lid have the material on
+    their right, so a W3 lid's loop encloses material and the pocket behind
+    the lid. A loop running counter-clockwise encloses free space (a lid
+    laid inside a slot narrower than eps, whose chain runs down the slot's
+    wall); one enclosing less than ``width`` x its perimeter hugs the lid
+    (a chain back along another lid over the same gap)."""
+    path = known.chain(area.b, area.a, tol, exclude)
     if path is None:
         return False
     x, y = path[:, 0], path[:, 1]  # closed by the lid A -> B
-    return float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) < 0
+    twice = float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    perimeter = float(np.hypot(*np.diff(path, axis=0).T).sum()) + area.dist
+    return twice < 0 and -twice / 2 >= width * perimeter
 
 
 def proof_lines(run, area):
@@ -199,7 +200,7 @@ def revisit_one(run, area):
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "
-                                          "crosses recorded contour or was touched from its other side")
+                                          "crosses recorded contour")
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
     if candidate and ends_only:
@@ -224,14 +225,23 @@ def revisit(run) -> None:
             run.close(area, "unknown", why + ", but the probe cannot hold the lid")
     if not run.waiting:
         return
-    joint = run.known.with_pieces([np.stack([a.a, a.b]) for a, _ in run.waiting])
+    lids = [np.stack([a.a, a.b]) for a, _ in run.waiting]
+    joint, first = run.known.with_pieces(lids), len(run.known.pieces)
     still = []
     for area, why in run.waiting:
-        if closes_loop(joint, area, 2 * run.probe.tol):
+        same_gap = [first + k for k, lid in enumerate(lids) if _same_gap(lid, area, run.eps)]
+        if closes_loop(joint, area, 2 * run.probe.tol, run.eps / 4, same_gap):
             run.close(area, "W3", why)
         else:
             still.append((area, why))
     run.waiting = still
+
+
+def _same_gap(lid, area, eps) -> bool:
+    """Does ``lid`` span the gap of ``area`` (its ends within eps of A_i and
+    B_i, in either order)? Such a lid cannot close ``area``'s loop."""
+    d = np.hypot(*(lid[:, None] - np.stack([area.a, area.b])[None]).transpose(2, 0, 1))
+    return bool((d[0, 0] <= eps and d[1, 1] <= eps) or (d[0, 1] <= eps and d[1, 0] <= eps))
 
 
 def finish(run) -> None:

@@ -113,7 +113,7 @@ class _Run:
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
-        self.known = KnownContour(join=probe.tip_zone)
+        self.known = KnownContour(join=eps)  # gaps shorter than eps are W2 (§3.1)
 
     def add(self, area):
         area.index = len(self.result.areas)
@@ -201,7 +201,7 @@ class _Run:
         Fig. 6(b) met inside a slot narrower than eps, where §3.2 fails) the
         area is deferred: :mod:`core2d.planner.revisit` tries those lines."""
         probe = self.probe
-        if (lid_like(self, area) and closes_loop(self.known, area, 2 * probe.tol)
+        if (lid_like(self, area) and closes_loop(self.known, area, 2 * probe.tol, self.eps / 4)
                 and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
         return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")

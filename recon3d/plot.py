@@ -1,0 +1,129 @@
+"""The coverage picture: two pyvista panels drawn from a scene multiblock.
+
+(a) the reconstructed surface coloured by face label, the sensed slice
+curves coloured W1/W2/W3/unknown, and the ground truth as a translucent
+ghost; (b) the ground truth coloured touched / reachable but missed /
+unreachable (outside the slab in light grey). Integer codes are mapped to
+colours explicitly (string categories would be coloured alphabetically).
+"""
+from __future__ import annotations
+
+import os
+
+__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "prepare_offscreen",
+           "coverage_plotter", "save_png", "has_display"]
+
+LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#e3e3e3", 5: "#c9a36b"}
+CURVE_COLORS = {1: "#08306b", 2: "#00441b", 3: "#a50f15", 4: "#ff7f0e"}
+COVERAGE_COLORS = {0: "#e8e8e8", 1: "#2ca02c", 2: "#ff7f0e", 3: "#6a51a3"}
+
+
+def has_display() -> bool:
+    """True where an interactive window can open (X11 or Wayland on Linux)."""
+    if os.name == "nt" or os.uname().sysname == "Darwin":
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def prepare_offscreen() -> None:
+    """Without a display, ask VTK for an EGL window (before VTK renders anything)."""
+    if not has_display():
+        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+
+def _categorical(plotter, mesh, array, colors, **kwargs):
+    """Add ``mesh`` with each cell painted the colour of its integer code in ``array``."""
+    import numpy as np
+    from matplotlib.colors import to_rgb
+
+    codes = np.asarray(mesh.cell_data[array])
+    table = np.zeros((max(colors) + 1, 3))
+    for code, color in colors.items():
+        table[code] = to_rgb(color)
+    rgb = (255 * table[np.clip(codes, 0, len(table) - 1)]).astype(np.uint8)
+    plotter.add_mesh(mesh, scalars=rgb, rgb=True, preference="cell", **kwargs)
+
+
+def _legend(plotter, entries, size):
+    """A legend box with black text (vtkLegendBoxActor colours text like the symbol)."""
+    legend = plotter.add_legend([[name, color] for name, color in entries], bcolor="white",
+                                face="rectangle", size=size, loc="upper left", border=True)
+    for i in range(legend.GetNumberOfEntries()):
+        legend.SetEntryColor(i, 0.0, 0.0, 0.0)
+        legend.SetEntrySymbol(i, _swatch(entries[i][1]))
+    return legend
+
+
+def _swatch(color):
+    """A filled square in ``color`` as a legend symbol (vtkPolyData with colours)."""
+    import numpy as np
+    import pyvista as pv
+    from matplotlib.colors import to_rgb
+
+    sq = pv.Rectangle([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).triangulate()
+    sq.cell_data["rgb"] = np.tile((255 * np.array(to_rgb(color))).astype(np.uint8),
+                                  (sq.n_cells, 1))
+    return sq
+
+
+def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
+                     window_size=(1600, 800)):
+    """A two-panel ``pyvista.Plotter`` of a scene (see module doc).
+
+    Parameters
+    ----------
+    blocks : pyvista.MultiBlock -- :func:`recon3d.scene.scene_blocks` or a read ``scene.vtm``.
+    title : str -- shown above panel (a).
+    off_screen : bool
+    window_size : (2,) int
+    """
+    import numpy as np
+    import pyvista as pv
+
+    from recon3d.evaluate import COVERAGE_CLASSES
+    from recon3d.scene import CURVE_CLASSES
+    from recon3d.surface import LABELS
+
+    gt, surf, curves = blocks["ground_truth"], blocks["surface"], blocks["curves"]
+    p = pv.Plotter(shape=(1, 2), off_screen=off_screen, window_size=list(window_size),
+                   border=False)
+    p.set_background("white")
+    p.subplot(0, 0)
+    p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
+    present = set()
+    if surf.n_cells:
+        _categorical(p, surf, "label", LABEL_COLORS, smooth_shading=False)
+        present = set(np.unique(surf.cell_data["label"]).tolist())
+    if gt.n_cells:
+        p.add_mesh(gt, color="#9a9a9a", opacity=0.08, style="surface")
+    if curves.n_cells:
+        _categorical(p, curves, "class", CURVE_COLORS, line_width=2)
+    entries = [(f"{c} {LABELS[c]}", LABEL_COLORS[c]) for c in sorted(LABELS) if c in present]
+    if curves.n_cells:
+        seen = set(np.unique(curves.cell_data["class"]).tolist())
+        entries += [(f"curve {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
+    entries.append(("ground truth (ghost)", "#9a9a9a"))
+    _legend(p, entries, (0.26, 0.34))
+    p.view_isometric()
+    p.camera.zoom(0.85)
+    p.subplot(0, 1)
+    p.add_text("(b) ground truth coverage", font_size=14, color="black")
+    if gt.n_cells:
+        _categorical(p, gt, "coverage", COVERAGE_COLORS)
+        shown = set(np.unique(gt.cell_data["coverage"]).tolist())
+        _legend(p, [(COVERAGE_CLASSES[c], COVERAGE_COLORS[c]) for c in sorted(shown)],
+                (0.26, 0.16))
+    p.view_isometric()
+    p.camera.zoom(0.85)
+    p.link_views()
+    return p
+
+
+def save_png(blocks, path, title: str = "", window_size=(1600, 800)) -> None:
+    """Render :func:`coverage_plotter` offscreen to ``path`` (PNG)."""
+    prepare_offscreen()
+    p = coverage_plotter(blocks, title=title, off_screen=True, window_size=window_size)
+    try:
+        p.screenshot(str(path))
+    finally:
+        p.close()

@@ -59,8 +59,7 @@ class Result:
         from recon3d.evaluate import contour_cloud, coverage_mesh
         from recon3d.scene import scene_blocks
 
-        gt = coverage_mesh(self.mesh, self.recon.domain, contour_cloud(self.slices),
-                           2 * self.recon.step)
+        gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step)
         return scene_blocks(gt, self.surface, self.slices)
 
     def plot(self, off_screen: bool | None = None, screenshot=None, **show_kwargs):

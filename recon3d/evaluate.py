@@ -3,10 +3,11 @@
 Definitions (all distances are exact point-to-triangle distances, VTK's
 ``vtkImplicitPolyDataDistance``, from fixed-count seeded area-uniform samples):
 
-* **domain** -- the slab between the first and last slice of every family
-  (their intersection when there are several). Ground truth outside it is
-  not scored; the reconstruction's caps (label 5) are where the domain cuts
-  the object, not object surface, and are not scored either.
+* **domain** -- the slab between the first and last slice of a family (the
+  union of the slabs when there are several). Ground truth outside it is
+  not scored; the reconstruction's caps (label 5) are where a slab ends, not
+  object surface, and are not scored either. ``SAMPLES`` ground-truth points
+  are drawn over the whole mesh and those inside the domain are scored.
 * ``accuracy`` -- mean distance from reconstruction samples to the ground
   truth; ``completeness`` -- mean distance from ground-truth samples (in the
   domain) to the reconstruction; ``chamfer_l1`` -- their mean;
@@ -17,9 +18,9 @@ Definitions (all distances are exact point-to-triangle distances, VTK's
   bounding-box diagonal.
 * **reachable part** -- a ground-truth sample inherits the exact 2D
   reachability of the nearest reference-contour sample (3D distance, over
-  every slice of every family); a reconstruction sample belongs to it when
-  its nearest ground-truth sample does. ``reachable`` repeats the metrics on
-  those samples.
+  the slices of the families whose slab holds the sample); a
+  reconstruction sample belongs to it when its nearest ground-truth sample
+  does. ``reachable`` repeats the metrics on those samples.
 * **touched** -- a ground-truth sample whose nearest reference-contour
   sample lies within eps / 2 of W1 u W2 (the 2D coverage rule);
   ``coverage`` = touched / reachable ground-truth samples.
@@ -32,7 +33,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "COVERAGE_CLASSES", "Domain", "ContourCloud",
-           "contour_cloud", "clip_to_domain", "GroundTruthSamples", "coverage_mesh",
+           "contour_cloud", "GroundTruthSamples", "coverage_mesh",
            "surface_metrics", "distances", "to_polydata"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
@@ -48,7 +49,7 @@ COVERAGE_CLASSES = {0: "outside the slab", 1: "touched", 2: "reachable, missed",
 
 @dataclass(frozen=True)
 class Domain:
-    """Intersection of slabs ``lo_k <= p . normal_k <= hi_k``.
+    """Union of slabs ``lo_k <= p . normal_k <= hi_k``.
 
     normals : (k, 3) float; lo, hi : (k,) float.
     """
@@ -64,8 +65,8 @@ class Domain:
 
     def contains(self, points, pad: float = 0.0) -> np.ndarray:
         """(n,) bool for (n, 3) points (``pad`` widens every slab)."""
-        h = np.asarray(points, dtype=np.float64) @ self.normals.T
-        return np.all((h >= self.lo - pad) & (h <= self.hi + pad), axis=1)
+        h = np.asarray(points, dtype=np.float64).reshape(-1, 3) @ self.normals.T
+        return np.any((h >= self.lo - pad) & (h <= self.hi + pad), axis=1)
 
     def as_dict(self) -> list:
         return [{"normal": n.tolist(), "from": float(a), "to": float(b)}
@@ -74,32 +75,64 @@ class Domain:
 
 @dataclass(frozen=True)
 class ContourCloud:
-    """Reference-contour samples of many slices in world coordinates.
+    """Reference-contour samples of the slices of several families, in world coordinates.
 
-    points : (m, 3) float; reachable, covered : (m,) bool.
+    points : (m, 3) float; reachable, covered : (m,) bool; family : (m,) int.
+    slabs : Domain -- slab k is family k's (first to last slice).
     """
 
     points: np.ndarray
     reachable: np.ndarray
     covered: np.ndarray
+    family: np.ndarray
+    slabs: Domain
 
     def classify(self, points) -> np.ndarray:
-        """(n,) int for (n, 3) points: 1 touched, 2 reachable but missed, 3 unreachable."""
-        if len(self.points) == 0:
-            return np.full(len(points), 3, dtype=np.int8)
-        _, i = cKDTree(self.points).query(np.asarray(points, dtype=np.float64))
-        return np.where(self.covered[i], 1, np.where(self.reachable[i], 2, 3)).astype(np.int8)
+        """(n,) int8 for (n, 3) points: 0 in no family's slab, else the class of
+        the nearest sample among the families whose slab holds the point:
+        1 touched, 2 reachable but missed, 3 unreachable."""
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        best = np.full(len(points), np.inf)
+        cls = np.zeros(len(points), dtype=np.int8)
+        pad = 1e-9 * float(np.ptp(self.points, axis=0).max()) if len(self.points) else 0.0
+        for k in range(len(self.slabs.lo)):
+            sel = np.flatnonzero(self.family == k)
+            slab = Domain(self.slabs.normals[k:k + 1], self.slabs.lo[k:k + 1],
+                          self.slabs.hi[k:k + 1])
+            inside = np.flatnonzero(slab.contains(points, pad))
+            if len(sel) == 0 or len(inside) == 0:
+                continue
+            d, i = cKDTree(self.points[sel]).query(points[inside])
+            j = sel[i]
+            c = np.where(self.covered[j], 1, np.where(self.reachable[j], 2, 3))
+            better = d < best[inside]
+            best[inside[better]] = d[better]
+            cls[inside[better]] = c[better]
+        return cls
 
 
-def contour_cloud(slice_runs) -> ContourCloud:
-    """Stack the :class:`recon3d.sensing.ContourTruth` of slices in 3D."""
-    pts, reach, cov = [np.zeros((0, 3))], [np.zeros(0, bool)], [np.zeros(0, bool)]
-    for s in slice_runs:
-        if len(s.truth.points):
-            pts.append(s.slice.to_3d(s.truth.points))
-            reach.append(s.truth.reachable)
-            cov.append(s.truth.covered)
-    return ContourCloud(np.concatenate(pts), np.concatenate(reach), np.concatenate(cov))
+def contour_cloud(families) -> ContourCloud:
+    """Stack the :class:`recon3d.sensing.ContourTruth` of every slice in 3D.
+
+    families : list of recon3d.pipeline.Family
+    """
+    pts, reach, cov, fam = [np.zeros((0, 3))], [np.zeros(0, bool)], [np.zeros(0, bool)], []
+    normals, lo, hi = [], [], []
+    for k, f in enumerate(families):
+        offsets = [s.slice.plane.offset for s in f.slices]
+        normals.append(np.asarray(f.normal, dtype=np.float64))
+        lo.append(min(offsets, default=0.0))
+        hi.append(max(offsets, default=0.0))
+        for s in f.slices:
+            if len(s.truth.points):
+                pts.append(s.slice.to_3d(s.truth.points))
+                reach.append(s.truth.reachable)
+                cov.append(s.truth.covered)
+                fam.append(np.full(len(s.truth.points), k))
+    fam = np.concatenate(fam) if fam else np.zeros(0, dtype=np.int64)
+    slabs = Domain(np.array(normals).reshape(-1, 3), np.array(lo), np.array(hi))
+    return ContourCloud(np.concatenate(pts), np.concatenate(reach), np.concatenate(cov),
+                        fam, slabs)
 
 
 def to_polydata(mesh):
@@ -146,50 +179,34 @@ def _scores(d_rec, d_gt, taus) -> dict:
             "fscore": fs}
 
 
-def clip_to_domain(mesh, domain: Domain):
-    """The part of ``mesh`` inside ``domain`` (trimesh plane clipping, no caps)."""
-    from trimesh.intersections import slice_mesh_plane
-
-    part = mesh
-    for n, lo, hi in zip(domain.normals, domain.lo, domain.hi):
-        if len(part.faces) == 0:
-            break
-        part = slice_mesh_plane(part, plane_normal=n, plane_origin=lo * n)
-        if len(part.faces) == 0:
-            break
-        part = slice_mesh_plane(part, plane_normal=-n, plane_origin=hi * n)
-    return part
-
-
 class GroundTruthSamples:
-    """Seeded area-uniform samples of the ground truth inside a domain.
+    """Seeded area-uniform samples of the ground truth, those inside a domain kept.
 
-    points : (n, 3) float; mesh : the whole ground truth (distances are to it);
+    points : (n, 3) float; drawn : int -- samples drawn over the whole mesh;
+    mesh : the whole ground truth (distances are to it);
     diagonal : float -- its bounding-box diagonal.
     """
 
     def __init__(self, mesh, domain: Domain, count: int = SAMPLES, seed: int = 0):
-        self.points = _sample(clip_to_domain(mesh, domain), count, seed)
-        self.mesh = mesh
         self.diagonal = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
+        pts = _sample(mesh, count, seed)
+        self.points = pts[domain.contains(pts, pad=1e-9 * self.diagonal)]
+        self.drawn = len(pts)
+        self.mesh = mesh
 
 
-def coverage_mesh(mesh, domain: Domain | None, cloud: ContourCloud, max_edge: float):
+def coverage_mesh(mesh, cloud: ContourCloud, max_edge: float):
     """Ground truth subdivided to ``max_edge`` with a per-face ``coverage`` class.
 
-    Classes: 0 outside the domain, 1 touched, 2 reachable but missed,
-    3 unreachable (see module doc). Returns a trimesh with
-    ``face_attributes['coverage']`` (f,) int8.
+    Classes (:data:`COVERAGE_CLASSES`): 0 outside every slab, 1 touched,
+    2 reachable but missed, 3 unreachable (see module doc). Returns a
+    trimesh with ``face_attributes['coverage']`` (f,) int8.
     """
     import trimesh
 
     v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
-    centers = out.triangles_center
-    cls = cloud.classify(centers)
-    if domain is not None:
-        cls[~domain.contains(centers)] = 0
-    out.face_attributes["coverage"] = cls.astype(np.int8)
+    out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
     return out
 
 
@@ -216,7 +233,7 @@ def surface_metrics(surface, gt: GroundTruthSamples, cloud: ContourCloud,
     d_rec = distances(rec, gt.mesh)
     d_gt = distances(gt.points, scored) if scored is not None else np.full(len(gt.points), np.inf)
     cls = cloud.classify(gt.points)
-    reach = cls <= 2
+    reach = (cls == 1) | (cls == 2)
     if len(gt.points) and len(rec):
         _, j = cKDTree(gt.points).query(rec)
         rec_reach = reach[j]
@@ -227,8 +244,8 @@ def surface_metrics(surface, gt: GroundTruthSamples, cloud: ContourCloud,
     extra = {
         "coverage": float((cls == 1).sum() / reach.sum()) if reach.any() else None,
         "reachable_share": float(reach.mean()) if len(reach) else None,
-        "samples": {"ground_truth": int(len(gt.points)), "reconstruction": int(len(rec)),
-                    "seeds": [0, seed]},
+        "samples": {"ground_truth_drawn": int(gt.drawn), "ground_truth": int(len(gt.points)),
+                    "reconstruction": int(len(rec)), "seeds": [0, seed]},
         "tau": taus,
     }
     return out, extra

@@ -61,8 +61,8 @@ class SliceRun:
 
     @property
     def has_reference(self) -> bool:
-        """The reference section has at least one closed loop."""
-        return len(self.slice.loops) > 0
+        """The reference section is closed loops only (not empty, no open chain)."""
+        return len(self.slice.loops) > 0 and not self.slice.open_chains
 
     @property
     def outer_loops(self) -> int:

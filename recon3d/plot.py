@@ -13,7 +13,7 @@ import os
 __all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "prepare_offscreen",
            "coverage_plotter", "save_png", "has_display"]
 
-LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#e3e3e3", 5: "#c9a36b"}
+LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#cfcfcf", 5: "#c9a36b"}
 CURVE_COLORS = {1: "#08306b", 2: "#00441b", 3: "#a50f15", 4: "#ff7f0e"}
 COVERAGE_COLORS = {0: "#e8e8e8", 1: "#2ca02c", 2: "#ff7f0e", 3: "#6a51a3"}
 
@@ -92,7 +92,7 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
     p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
     present = set()
     if surf.n_cells:
-        _categorical(p, surf, "label", LABEL_COLORS, smooth_shading=False)
+        _categorical(p, surf, "label", LABEL_COLORS, ambient=0.25)
         present = set(np.unique(surf.cell_data["label"]).tolist())
     if gt.n_cells:
         p.add_mesh(gt, color="#9a9a9a", opacity=0.08, style="surface")
@@ -109,7 +109,7 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
     p.subplot(0, 1)
     p.add_text("(b) ground truth coverage", font_size=14, color="black")
     if gt.n_cells:
-        _categorical(p, gt, "coverage", COVERAGE_COLORS)
+        _categorical(p, gt, "coverage", COVERAGE_COLORS, ambient=0.25)
         shown = set(np.unique(gt.cell_data["coverage"]).tolist())
         _legend(p, [(COVERAGE_CLASSES[c], COVERAGE_COLORS[c]) for c in sorted(shown)],
                 (0.26, 0.16))

@@ -16,7 +16,7 @@ from recon3d.closure import slice_region
 from recon3d.evaluate import (FSCORE_SHARES, SAMPLES, Domain,
                               GroundTruthSamples, contour_cloud, surface_metrics)
 from recon3d.field import grid_step
-from recon3d.surface import empty_surface, family_solid, fuse
+from recon3d.surface import family_solid, fuse
 
 __all__ = ["Reconstruction", "reconstruct", "score"]
 
@@ -62,7 +62,7 @@ def reconstruct(run) -> Reconstruction:
         if solid is None:
             notes.append(f"family {fam.label}: nothing sensed, no surface")
         solids.append(solid)
-    surface = fuse(solids) if any(s is not None for s in solids) else empty_surface()
+    surface = fuse(solids, run.mesh.bounds)
     return Reconstruction(surface, regions, solids, step, notes)
 
 
@@ -90,15 +90,15 @@ def score(run, recon: Reconstruction, samples: int = SAMPLES) -> tuple[dict | No
         return None, info
     info["domain"] = domain.as_dict()
     gt = GroundTruthSamples(run.mesh, domain, samples)
-    surface, extra = surface_metrics(recon.surface, gt, contour_cloud(run.slices), samples)
+    surface, extra = surface_metrics(recon.surface, gt, contour_cloud(run.families), samples)
     info.update(extra)
     families = []
     for k, fam in enumerate(run.families):
         if k == len(run.families) - 1:
             entry_surface, entry_extra = surface, extra
         else:
-            part = fuse(recon.solids[:k + 1])
-            cloud = contour_cloud([s for f in run.families[:k + 1] for s in f.slices])
+            part = fuse(recon.solids[:k + 1], run.mesh.bounds)
+            cloud = contour_cloud(run.families[:k + 1])
             entry_surface, entry_extra = surface_metrics(part, gt, cloud, samples)
         entry = {"axis": fam.label, "slices": len(fam.slices),
                  "coverage": entry_extra["coverage"], "surface": entry_surface}

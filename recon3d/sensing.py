@@ -5,9 +5,10 @@ do not pickle), senses the slices it is given with :func:`core2d.sense_slice`
 and scores them with :func:`core2d.truth.metrics.slice_metrics`. The same
 code runs in-process for ``jobs=1``, so results do not depend on ``jobs``.
 
-Slices whose reference section has no closed loop (open meshes) have no
-reference: every metric that needs one is ``None`` and the slice is left
-out of the accuracy totals; its cost counters still count.
+Slices of an open mesh whose reference section is not made of closed loops
+alone (no loop, or open chains beside the loops) have no reference: every
+metric that needs one is ``None`` and the slice is left out of the accuracy
+totals; its cost counters still count.
 """
 from __future__ import annotations
 
@@ -155,7 +156,7 @@ class WorkerState:
         samples = reachable_samples(loops, st.spacing)
         metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
                                 samples=samples)
-        if not loops:
+        if not loops or cut.open_chains:
             return SliceOutcome(family, index, result, no_reference_metrics(metrics, result),
                                 workspace, ContourTruth.empty())
         samp, reach = samples

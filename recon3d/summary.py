@@ -66,8 +66,8 @@ def summary_lines(result, files=()) -> list[str]:
                      f"unsound): {_names(run, several)}")
     noref = [s for s in run.slices if not s.has_reference]
     if noref:
-        lines.append(f"  {len(noref)} slices have no closed reference loop (open mesh): "
-                     f"metrics null, left out of the totals: {_names(run, noref)}")
+        lines.append(f"  {len(noref)} slices have no closed reference contour (open mesh): "
+                     f"metrics null, left out of the 2D totals: {_names(run, noref)}")
     if files:
         lines.append(f"  wrote {files[0].parent}/: {' '.join(sorted(f.name for f in files))}")
     return lines

@@ -1,19 +1,30 @@
 """Watertight labelled surface from the slice regions of one or more families.
 
 Route: per family, the field of :mod:`recon3d.field` is contoured at 0 with
-VTK flying edges (positive inside), moved to world coordinates, checked and
-trimmed to the slab between the first and last slice by ``manifold3d``
-(``Manifold.trim_by_plane``), which makes the two caps exact. Several
-families are fused by ``manifold3d`` intersection: every family's solid
-contains what it could not see (holes are filled, W3 lids close undercuts),
-so space shown free by any family is free -- the space-carving rule of
-visual hulls. The result lives in the region all families span.
+VTK flying edges (positive inside) and moved to world coordinates; the
+level set extends one layer beyond the first and last slice.
+``manifold3d`` checks it and makes the solid exact at the slab ends:
+family ``f`` proves empty the part of its slab (the box between its first
+and last slice) outside its level set, ``E_f = slab_f - level_f``, and the
+surface bounds
+
+    S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)
+
+(``E_f`` is cut from a slightly larger box, half a layer longer at each
+end, so that no face of it is coplanar with a face of the slabs: coplanar
+faces would leave zero-volume sheets.)
+
+With one family this is the level set cut to its slab (flat caps at the
+first and last slice). With several, space shown free by any family is
+free -- the space-carving rule of visual hulls: each family's solid holds
+what it could not see (holes filled, W3 lids over undercuts) -- and each
+family adds the part of the object only its slab reaches.
 
 Face labels (``LABELS``): a face with a vertex on a slice plane takes the
 kind of the nearest sensed piece of that slice (W1 -> 1, W2 -> 2, W3 -> 3;
 unknown chords and bridges -> 4); other faces of the level set are
-interpolated between slices (4); faces made by the trimming planes are caps
-(5). ``manifold3d`` carries the labels through trimming and fusion as face
+interpolated between slices (4); faces on a plane that bounds a slab are
+caps (5). ``manifold3d`` carries the labels through the booleans as face
 ids.
 """
 from __future__ import annotations
@@ -27,19 +38,23 @@ from recon3d.field import family_grid, family_volume
 
 __all__ = ["LABELS", "FamilySolid", "family_solid", "fuse", "empty_surface"]
 
+#: margin of the box the slabs are cut from, times the largest extent
+_BOX_MARGIN = 0.05
+
 LABELS = {1: "W1 traced", 2: "W2 approximated", 3: "W3 lid", 4: "between slices", 5: "cap"}
 """Surface face label codes and their names."""
 
 
 @dataclass(frozen=True)
 class FamilySolid:
-    """One family's reconstructed solid, trimmed to its slab.
+    """One family's level set (one layer beyond its slab at each end).
 
     manifold : manifold3d.Manifold
-    original_id : int -- manifold3d run id of the untrimmed level set.
+    original_id : int -- manifold3d run id of the level set.
     labels : (f,) int -- label of each level-set face (manifold face id).
     normal : (3,) float -- the family's unit normal.
     slab : (2,) float -- first and last slice offsets along ``normal``.
+    overshoot : float -- how far beyond the slab ``E_f`` is cut (half a layer).
     """
 
     manifold: object
@@ -47,6 +62,7 @@ class FamilySolid:
     labels: np.ndarray
     normal: np.ndarray
     slab: tuple
+    overshoot: float
 
 
 def _piece_trees(regions, step):
@@ -90,7 +106,7 @@ def _face_labels(points, faces, grid, regions) -> np.ndarray:
 
 
 def family_solid(regions, planes, step: float) -> FamilySolid | None:
-    """Level set of one family's field, trimmed to its slab.
+    """Level set of one family's field (see module doc).
 
     Parameters
     ----------
@@ -135,8 +151,8 @@ def family_solid(regions, planes, step: float) -> FamilySolid | None:
         raise RuntimeError(f"level set is not a manifold: {man.status().name}")
     oid = int(np.asarray(man.to_mesh64().run_original_id)[0])
     n = np.asarray(p0.normal, dtype=np.float64)
-    man = man.trim_by_plane(n, heights[0]).trim_by_plane(-n, -heights[-1])
-    return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])))
+    delta = 0.5 * float(np.diff(heights).min()) / grid.k
+    return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])), delta)
 
 
 def empty_surface():
@@ -148,25 +164,49 @@ def empty_surface():
     return mesh
 
 
-def fuse(solids) -> object:
-    """Intersect family solids; return a trimesh with ``face_attributes['label']``.
+def _box(solids, bounds, margin: float = _BOX_MARGIN):
+    """A box around the level sets and ``bounds`` ((2, 3) float), with a margin."""
+    import manifold3d
+
+    boxes = [np.reshape(s.manifold.bounding_box(), (2, 3)) for s in solids]
+    if bounds is not None:
+        boxes.append(np.asarray(bounds, dtype=np.float64).reshape(2, 3))
+    lo = np.min([b[0] for b in boxes], axis=0)
+    hi = np.max([b[1] for b in boxes], axis=0)
+    pad = margin * float((hi - lo).max())
+    return manifold3d.Manifold.cube((hi - lo) + 2 * pad).translate(lo - pad)
+
+
+def fuse(solids, bounds=None) -> object:
+    """The surface of ``S = union of slabs - union of E_f`` (module doc).
 
     Parameters
     ----------
     solids : list of FamilySolid (None entries are skipped).
+    bounds : (2, 3) float, optional -- the ground truth's bounds (the slabs
+        are cut from a box around these and the level sets).
 
     Returns
     -------
-    trimesh.Trimesh -- watertight, float64 vertices; empty when nothing remains.
+    trimesh.Trimesh -- watertight, float64 vertices,
+    ``face_attributes['label']`` (f,) int32; empty when nothing remains.
     """
+    import manifold3d
     import trimesh
 
     solids = [s for s in solids if s is not None]
     if not solids:
         return empty_surface()
-    man = solids[0].manifold
-    for s in solids[1:]:
-        man = man ^ s.manifold
+    box = _box(solids, bounds)
+    big = _box(solids, bounds, 2 * _BOX_MARGIN)
+    slabs, empty = [], []
+    for s in solids:
+        n, (lo, hi), d = s.normal, s.slab, s.overshoot
+        slabs.append(box.trim_by_plane(n, lo).trim_by_plane(-n, -hi))
+        empty.append(big.trim_by_plane(n, lo - d).trim_by_plane(-n, -(hi + d)) - s.manifold)
+    op = manifold3d.OpType
+    man = manifold3d.Manifold.batch_boolean(slabs, op.Add) - \
+        manifold3d.Manifold.batch_boolean(empty, op.Add)
     if man.is_empty():
         return empty_surface()
     out = man.to_mesh64()

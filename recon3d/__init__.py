@@ -6,12 +6,12 @@ watertight surface (:mod:`recon3d.closure`, :mod:`recon3d.field`,
 pyvista pictures (:mod:`recon3d.scene`, :mod:`recon3d.plot`) and the command
 line (:mod:`recon3d.cli`).
 
-Examples
---------
->>> import recon3d                                                 # doctest: +SKIP
->>> res = recon3d.run("fig17_pocket", axis=["z", "x"], slices=6)
->>> res.metrics["total"]["surface"]["fscore"]["1%"]
->>> res.save("out/pocket")
+Example (the README has more)::
+
+    import recon3d
+    res = recon3d.run("fig17_pocket", axis=["z", "x"], slices=6)
+    res.metrics["total"]["surface"]["fscore"]["1%"]
+    res.save("out/pocket")
 """
 from recon3d.api import Result, run
 from recon3d.checks import InputError

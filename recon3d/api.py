@@ -1,12 +1,12 @@
 """Python API: ``recon3d.run(...) -> Result`` (the whole job, for notebooks).
 
-Examples
---------
->>> import recon3d                                            # doctest: +SKIP
->>> res = recon3d.run("fig17_pocket", axis="z", slices=4, jobs=2)
->>> res.metrics["total"]["surface"]["fscore"]["1%"]
->>> res.surface.is_watertight, len(res.slices)
->>> res.save("out/pocket"); res.plot()
+Example::
+
+    import recon3d
+    res = recon3d.run("fig17_pocket", axis="z", slices=4, jobs=2)
+    res.metrics["total"]["surface"]["fscore"]["1%"]
+    res.surface.is_watertight, len(res.slices)
+    res.save("out/pocket"); res.plot()
 """
 from __future__ import annotations
 

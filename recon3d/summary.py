@@ -10,7 +10,7 @@ def format_seconds(s: float | None) -> str:
     """Human duration.
 
     >>> format_seconds(42.0), format_seconds(4000.0), format_seconds(None)
-    ('42 s', '1 h 07 min', 'n/a')
+    ('42 s', '1 h 06 min', 'n/a')
     """
     if s is None:
         return "n/a"

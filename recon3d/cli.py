@@ -25,6 +25,13 @@ def warn(message: str) -> None:
     print(f"recon3d: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (UsageError) instead of usage + error lines."""
+
+    def error(self, message):
+        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
+
+
 def _show_warning(message, category, filename, lineno, file=None, line=None):
     warn(message)
 
@@ -64,7 +71,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="recon3d",
         description="Slice-based pulling-motion tactile sensing of 3D meshes "
         "(Kaneko & Tsuji, WAFR 2000, extended to 3D).",

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "prepare_offscreen",
+__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "VIEW", "prepare_offscreen",
            "coverage_plotter", "save_png", "has_display"]
 
 LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#cfcfcf", 5: "#c9a36b"}
@@ -66,9 +66,68 @@ def _swatch(color):
     return sq
 
 
+VIEW = (0.45, 0.6, 1.0)
+"""Camera direction (towards the camera) of both panels; +y is up (the scenes' convention)."""
+
+
+def _split(mesh, array, codes):
+    """(cells whose ``array`` is in ``codes``, the other cells), as two meshes."""
+    import numpy as np
+
+    keep = np.isin(mesh.cell_data[array], list(codes))
+    return mesh.extract_cells(np.flatnonzero(keep)), mesh.extract_cells(np.flatnonzero(~keep))
+
+
+def _panel_a(p, surf, gt, curves, title):
+    import numpy as np
+
+    from recon3d.scene import CURVE_CLASSES
+    from recon3d.surface import LABELS
+
+    p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
+    entries = []
+    if surf.n_cells:
+        caps, body = _split(surf, "label", {5})
+        if body.n_cells:
+            _categorical(p, body, "label", LABEL_COLORS, ambient=0.25)
+        if caps.n_cells:  # see-through: caps are where a slab ends, not object surface
+            _categorical(p, caps, "label", LABEL_COLORS, ambient=0.25, opacity=0.35)
+        present = set(np.unique(surf.cell_data["label"]).tolist())
+        entries = [(f"{c} {LABELS[c]}", LABEL_COLORS[c]) for c in sorted(LABELS) if c in present]
+    if gt.n_cells:
+        p.add_mesh(gt, color="#9a9a9a", opacity=0.08, style="surface")
+    if curves.n_cells:
+        _categorical(p, curves, "class", CURVE_COLORS, line_width=2)
+        seen = set(np.unique(curves.cell_data["class"]).tolist())
+        entries += [(f"curve {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
+    entries.append(("ground truth (ghost)", "#9a9a9a"))
+    _legend(p, entries, (0.24, 0.3))
+
+
+def _panel_b(p, gt):
+    import numpy as np
+
+    from recon3d.evaluate import COVERAGE_CLASSES
+
+    p.add_text("(b) ground truth coverage", font_size=14, color="black")
+    if not gt.n_cells:
+        return
+    outside, inside = _split(gt, "coverage", {0})
+    if inside.n_cells:
+        _categorical(p, inside, "coverage", COVERAGE_COLORS, ambient=0.25)
+    if outside.n_cells:
+        _categorical(p, outside, "coverage", COVERAGE_COLORS, ambient=0.25, opacity=0.3)
+    shown = set(np.unique(gt.cell_data["coverage"]).tolist())
+    _legend(p, [(COVERAGE_CLASSES[c], COVERAGE_COLORS[c]) for c in sorted(shown)],
+            (0.24, 0.14))
+
+
 def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
                      window_size=(1600, 800)):
     """A two-panel ``pyvista.Plotter`` of a scene (see module doc).
+
+    Caps and the ground truth outside the slab are drawn see-through, so the
+    sensed part shows through the slab ends.
 
     Parameters
     ----------
@@ -77,46 +136,33 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
     off_screen : bool
     window_size : (2,) int
     """
-    import numpy as np
     import pyvista as pv
-
-    from recon3d.evaluate import COVERAGE_CLASSES
-    from recon3d.scene import CURVE_CLASSES
-    from recon3d.surface import LABELS
 
     gt, surf, curves = blocks["ground_truth"], blocks["surface"], blocks["curves"]
     p = pv.Plotter(shape=(1, 2), off_screen=off_screen, window_size=list(window_size),
                    border=False)
     p.set_background("white")
     p.subplot(0, 0)
-    p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
-    present = set()
-    if surf.n_cells:
-        _categorical(p, surf, "label", LABEL_COLORS, ambient=0.25)
-        present = set(np.unique(surf.cell_data["label"]).tolist())
-    if gt.n_cells:
-        p.add_mesh(gt, color="#9a9a9a", opacity=0.08, style="surface")
-    if curves.n_cells:
-        _categorical(p, curves, "class", CURVE_COLORS, line_width=2)
-    entries = [(f"{c} {LABELS[c]}", LABEL_COLORS[c]) for c in sorted(LABELS) if c in present]
-    if curves.n_cells:
-        seen = set(np.unique(curves.cell_data["class"]).tolist())
-        entries += [(f"curve {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
-    entries.append(("ground truth (ghost)", "#9a9a9a"))
-    _legend(p, entries, (0.26, 0.34))
-    p.view_isometric()
-    p.camera.zoom(0.85)
+    _panel_a(p, surf, gt, curves, title)
     p.subplot(0, 1)
-    p.add_text("(b) ground truth coverage", font_size=14, color="black")
-    if gt.n_cells:
-        _categorical(p, gt, "coverage", COVERAGE_COLORS, ambient=0.25)
-        shown = set(np.unique(gt.cell_data["coverage"]).tolist())
-        _legend(p, [(COVERAGE_CLASSES[c], COVERAGE_COLORS[c]) for c in sorted(shown)],
-                (0.26, 0.16))
-    p.view_isometric()
-    p.camera.zoom(0.85)
+    _panel_b(p, gt)
     p.link_views()
+    p.view_vector(VIEW, viewup=(0.0, 1.0, 0.0))
+    p.camera.zoom(0.8)
+    _pan_down(p.camera, 0.12)
     return p
+
+
+def _pan_down(camera, share: float) -> None:
+    """Move the picture down by ``share`` of the view height (room for the legends)."""
+    import numpy as np
+
+    up = np.asarray(camera.up, dtype=float)
+    pos, focal = np.asarray(camera.position), np.asarray(camera.focal_point)
+    height = 2.0 * np.linalg.norm(pos - focal) * np.tan(np.radians(camera.view_angle) / 2)
+    shift = share * height * up / np.linalg.norm(up)
+    camera.position = tuple(pos + shift)
+    camera.focal_point = tuple(focal + shift)
 
 
 def save_png(blocks, path, title: str = "", window_size=(1600, 800)) -> None:

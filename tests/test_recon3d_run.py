@@ -115,3 +115,11 @@ def test_undercut_gets_w3_faces_over_unreachable_contour():
         total += int(sel.sum())
     assert total == (lab == 3).sum()
     assert unreachable >= 0.8 * total and outside >= 0.95 * total
+
+
+def test_plot_renders_offscreen(pocket, tmp_path):
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    pocket.plot(off_screen=True, screenshot=tmp_path / "p.png")
+    assert (tmp_path / "p.png").stat().st_size > 10_000

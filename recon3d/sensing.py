@@ -101,10 +101,14 @@ def family_slices(mesh, axis, count):
         log.setLevel(level)
 
 
-def no_reference_metrics(metrics: dict, result) -> dict:
-    """``metrics`` with every value that needs a reference contour set to None."""
-    keep = set(result.stats.as_dict())
-    return {k: (v if k in keep else None) for k, v in metrics.items()}
+def no_reference_metrics(result, settings: SenseSettings) -> dict:
+    """The metrics of a slice without reference: the keys of ``slice_metrics``,
+    every value None except the cost counters of ``result.stats``."""
+    st = settings
+    keys = slice_metrics([], core2d.SliceResult(), st.eps, tol=st.metric_tol, spacing=st.spacing)
+    out = {k: None for k in keys}
+    out.update(result.stats.as_dict())
+    return out
 
 
 def _covered(points, result, tol) -> np.ndarray:
@@ -144,21 +148,19 @@ class WorkerState:
         cut = self.slices(family)[index]
         if cut.is_empty:
             result = core2d.SliceResult()
-            metrics = slice_metrics([], result, st.eps, tol=st.metric_tol, spacing=st.spacing)
-            return SliceOutcome(family, index, result,
-                                no_reference_metrics(metrics, result),
+            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
                                 (np.zeros(2), 0.0), ContourTruth.empty())
         center, radius = cut.bounding_circle()
         workspace = (np.asarray(center, float), float(radius) + st.eps)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
                                     max_motions=st.max_motions, bootstrap_count=st.bootstrap)
+        if not cut.loops or cut.open_chains:
+            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
+                                workspace, ContourTruth.empty())
         loops = [np.asarray(lp) for lp in cut.loops]
         samples = reachable_samples(loops, st.spacing)
         metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
                                 samples=samples)
-        if not loops or cut.open_chains:
-            return SliceOutcome(family, index, result, no_reference_metrics(metrics, result),
-                                workspace, ContourTruth.empty())
         samp, reach = samples
         covered = reach & _covered(samp.points, result, st.metric_tol)
         truth = ContourTruth(samp.points, samp.lengths, reach, covered)

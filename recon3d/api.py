@@ -201,9 +201,17 @@ def run(source, axis="z", slices: int = 8, eps: float | None = None, tol: float 
     Raises
     ------
     InputError (a ValueError) -- bad input, found before any sensing.
+
+    Warns
+    -----
+    UserWarning -- a mesh that is not watertight, a coarse eps (also in ``Result.warnings``).
     """
+    import warnings
+
     config = make_config(axis, slices, eps, tol, backend, jobs, max_motions, probe_speed,
                          motion_overhead)
     mesh, name, notes = load_input(source)
     notes += validate(mesh, config)
+    for note in notes:  # not watertight, coarse eps: say it where the caller looks
+        warnings.warn(note, UserWarning, stacklevel=2)
     return execute(mesh, name, config, notes, progress)

@@ -16,6 +16,7 @@ Bounds relative to the mesh (``diag`` = bounding-box diagonal):
 from __future__ import annotations
 
 import math
+import numbers
 import os
 import tempfile
 from pathlib import Path
@@ -51,8 +52,9 @@ def positive(value, name: str, allow_zero: bool = False) -> float:
 
 def at_least(value, name: str, low: int = 1) -> int:
     """``value`` as an int >= ``low``."""
-    if isinstance(value, bool) or not isinstance(value, (int,)) and not (
-            isinstance(value, float) and value.is_integer()):
+    integral = isinstance(value, numbers.Integral) or (
+        isinstance(value, float) and value.is_integer())
+    if isinstance(value, bool) or not integral:
         raise InputError(f"{name} must be an integer (got {value!r})")
     if int(value) < low:
         raise InputError(f"{name} must be at least {low} (got {value})")

@@ -22,7 +22,7 @@ Definitions (all distances are exact point-to-triangle distances, VTK's
   reconstruction sample belongs to it when its nearest ground-truth sample
   does. ``reachable`` repeats the metrics on those samples.
 * **touched** -- a ground-truth sample whose nearest reference-contour
-  sample lies within eps / 2 of W1 u W2 (the 2D coverage rule);
+  sample is reachable and lies within eps / 2 of W1 u W2 (the distance of the 2D coverage);
   ``coverage`` = touched / reachable ground-truth samples.
 """
 from __future__ import annotations

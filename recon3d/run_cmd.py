@@ -64,7 +64,6 @@ def run_command(args) -> int:
     from recon3d.api import execute, load_input, make_config, validate
     from recon3d.checks import InputError, check_out_dir
     from recon3d.cli import UsageError, warn
-    from recon3d.save import RenderError
     from recon3d.summary import summary_lines
 
     try:
@@ -100,8 +99,6 @@ def run_command(args) -> int:
         if bar is not None:
             bar.set_description(f"writing {name}")
         files = result.save(args.out, png=not args.no_png)
-    except RenderError as exc:
-        raise UsageError(f"{exc} (nothing written; --no-png skips the picture)") from None
     finally:
         if bar is not None:
             bar.close()

@@ -3,7 +3,9 @@
 Every file is first written into a hidden staging directory inside the
 output directory, then moved into place with ``os.replace``; on any error
 the staging directory is removed, and so is the output directory when this
-call created it. Files are 0644, directories 0755.
+call created it. Files are 0644, directories 0755. A machine without
+OpenGL cannot render ``coverage.png``: the other files are still written
+and a ``RuntimeWarning`` says why the picture is missing.
 """
 from __future__ import annotations
 
@@ -11,18 +13,15 @@ import json
 import os
 import shutil
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["OUTPUTS", "RenderError", "write_outputs", "write_ply", "read_ply_labels"]
+__all__ = ["OUTPUTS", "write_outputs", "write_ply", "read_ply_labels"]
 
 OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png")
 """Files of a complete run (``scene.vtm`` comes with its ``scene/`` folder)."""
-
-
-class RenderError(RuntimeError):
-    """coverage.png could not be rendered (no OpenGL / EGL); one-line message."""
 
 
 def write_ply(path, surface) -> None:
@@ -44,6 +43,17 @@ def read_ply_labels(path):
         raise ValueError(f"{path} has no face property 'label'")
     mesh.face_attributes["label"] = np.asarray(raw["label"], dtype=np.int32)
     return mesh
+
+
+def _render(blocks, path, title) -> None:
+    from recon3d.plot import save_png
+
+    try:
+        save_png(blocks, path, title=title)
+    except Exception as exc:  # VTK raises many kinds when OpenGL is missing
+        msg = " ".join(str(exc).split())[:200]
+        warnings.warn(f"coverage.png not written: {type(exc).__name__}: {msg} (needs OpenGL: "
+                      f"EGL or a display; --no-png skips it)", RuntimeWarning, stacklevel=3)
 
 
 def _json(path, obj) -> None:
@@ -70,15 +80,16 @@ def write_outputs(out, sensing: dict, metrics: dict, surface, blocks, title: str
     sensing, metrics : dict -- the JSON documents.
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     blocks : pyvista.MultiBlock -- :func:`recon3d.scene.scene_blocks`.
-    png : bool -- render ``coverage.png`` (needs an OpenGL context).
+    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc).
 
     Returns
     -------
     list of Path -- the files written (the ``scene/`` folder included).
     """
-    from recon3d.plot import save_png
-
     out = Path(out)
+    top = out.absolute()  # the first directory this call creates, if any
+    while not top.parent.exists():
+        top = top.parent
     created = not out.exists()
     out.mkdir(parents=True, exist_ok=True)
     if created:
@@ -90,13 +101,11 @@ def write_outputs(out, sensing: dict, metrics: dict, surface, blocks, title: str
         write_ply(stage / "surface.ply", surface)
         blocks.save(str(stage / "scene.vtm"))
         if png:
-            try:
-                save_png(blocks, stage / "coverage.png", title=title)
-            except Exception as exc:  # VTK raises many kinds when OpenGL is missing
-                msg = " ".join(str(exc).split())[:200]
-                raise RenderError(f"cannot render coverage.png: {type(exc).__name__}: {msg}") \
-                    from None
+            _render(blocks, stage / "coverage.png", title)
         names = sorted(p.name for p in stage.iterdir())
+        for name in set(OUTPUTS) - set(names):  # a stale picture would not match the data
+            if (out / name).is_file():
+                os.unlink(out / name)
         for name in names:
             _chmod_tree(stage / name)
             target = out / name
@@ -108,5 +117,5 @@ def write_outputs(out, sensing: dict, metrics: dict, surface, blocks, title: str
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
         if created:
-            shutil.rmtree(out, ignore_errors=True)
+            shutil.rmtree(top, ignore_errors=True)
         raise

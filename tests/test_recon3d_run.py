@@ -123,3 +123,33 @@ def test_plot_renders_offscreen(pocket, tmp_path):
     pv.OFF_SCREEN = True
     pocket.plot(off_screen=True, screenshot=tmp_path / "p.png")
     assert (tmp_path / "p.png").stat().st_size > 10_000
+
+
+def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, tmp_path,
+                                                                       monkeypatch):
+    import recon3d.plot
+
+    def no_gl(*args, **kwargs):
+        raise RuntimeError("no EGL\ndevice")
+
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "coverage.png").write_bytes(b"old picture")
+    monkeypatch.setattr(recon3d.plot, "save_png", no_gl)
+    with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
+        files = pocket.save(out)
+    assert {p.name for p in files} == {"sensing.json", "metrics.json", "surface.ply",
+                                       "scene.vtm", "scene"}
+    assert not (out / "coverage.png").exists()
+
+
+def test_failed_save_leaves_nothing(pocket, tmp_path, monkeypatch):
+    import recon3d.save
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(recon3d.save, "write_ply", broken)
+    with pytest.raises(OSError):
+        pocket.save(tmp_path / "new" / "deeper")
+    assert not (tmp_path / "new").exists()

@@ -119,7 +119,6 @@ class MeshRun:
         out["slices_without_reference"] = sum(not s.has_reference for s in self.slices)
         return out
 
-
     @property
     def nudge_notes(self) -> list[str]:
         """One line per family whose degenerate planes were moved (slicer.degenerate)."""

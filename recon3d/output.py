@@ -1,18 +1,17 @@
-"""Run output: ``sensing.json`` (DESIGN.md contract) and ``metrics.json``.
+"""The JSON documents of a run: ``sensing.json`` (DESIGN.md contract) and ``metrics.json``.
 
-Files are written atomically (temporary file + rename) so a failed or
-interrupted run never leaves a half-written output.
+2D metric dicts come from :func:`core2d.truth.metrics.slice_metrics` and are
+passed through as they are (their keys may grow); recon3d adds the slice's
+family, reference facts, robot time, the 3D ``total.surface`` block and the
+``surface_eval`` block that explains it.
 """
 from __future__ import annotations
 
-import json
-import os
-import tempfile
-from pathlib import Path
-
 import numpy as np
 
-__all__ = ["sensing_document", "metrics_document", "write_json"]
+__all__ = ["sensing_document", "metrics_document", "ROBOT_RULE"]
+
+ROBOT_RULE = "robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
 
 
 def _world(cut, pts) -> list:
@@ -36,6 +35,7 @@ def _slice_document(srun) -> dict:
     stats["unknown"] = len(res.unknown)
     return {
         "index": int(plane.index),
+        "family": int(srun.family),
         "origin": np.asarray(plane.origin, float).tolist(),
         "normal": np.asarray(plane.normal, float).tolist(),
         "u": np.asarray(plane.u, float).tolist(),
@@ -48,38 +48,56 @@ def _slice_document(srun) -> dict:
     }
 
 
+def _families(run) -> list:
+    return [{"axis": fam.label, "normal": np.asarray(fam.normal, float).tolist(),
+             "slices": len(fam.slices)} for fam in run.families]
+
+
 def sensing_document(run) -> dict:
     """The ``sensing.json`` object of a :class:`recon3d.pipeline.MeshRun`."""
     return {
         "mesh": run.name,
         "eps": float(run.eps),
+        "tol": float(run.tol),
         "probe_length": float(run.probe_length),
         "backend": run.config.backend,
+        "families": _families(run),
         "slices": [_slice_document(s) for s in run.slices],
     }
 
 
-def metrics_document(run) -> dict:
-    """Per-slice metrics and their totals (``metrics.json``)."""
+def _slice_metrics(srun, run) -> dict:
+    out = {"index": int(srun.slice.plane.index), "family": int(srun.family),
+           "axis": run.families[srun.family].label, "reference": srun.has_reference,
+           "outer_loops": srun.outer_loops,
+           "holes": int(np.asarray(srun.slice.holes, dtype=bool).sum()),
+           "open_chains": len(srun.slice.open_chains)}
+    out.update(srun.metrics)
+    return out
+
+
+def metrics_document(run, surface: dict | None, surface_eval: dict) -> dict:
+    """Per-slice 2D metrics, their totals, the 3D ``total.surface`` block and robot time.
+
+    Parameters
+    ----------
+    run : recon3d.pipeline.MeshRun
+    surface : dict or None -- from :func:`recon3d.reconstruct.score`.
+    surface_eval : dict -- its explanation (domain, tau, samples, family gains).
+    """
+    cfg = run.config
+    total = dict(run.totals)
+    total["surface"] = surface
     return {
         "mesh": run.name,
         "eps": float(run.eps),
+        "tol": float(run.tol),
         "seconds": float(run.seconds),
-        "total": run.totals,
-        "slices": [dict(index=int(s.slice.plane.index), **s.metrics) for s in run.slices],
+        "jobs": int(run.jobs),
+        "families": _families(run),
+        "robot": {"probe_speed": float(cfg.probe_speed),
+                  "motion_overhead_s": float(cfg.motion_overhead), "rule": ROBOT_RULE},
+        "total": total,
+        "surface_eval": surface_eval,
+        "slices": [_slice_metrics(s, run) for s in run.slices],
     }
-
-
-def write_json(path, obj) -> Path:
-    """Write ``obj`` as JSON to ``path`` atomically."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as fh:
-            json.dump(obj, fh, indent=1, allow_nan=False)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path

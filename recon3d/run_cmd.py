@@ -1,107 +1,109 @@
-"""``recon3d run INPUT --out DIR``: sense every slice, write the outputs."""
+"""``recon3d run INPUT --out DIR``: sense, reconstruct, score, write the outputs."""
 from __future__ import annotations
 
+import os
 import sys
-from pathlib import Path
 
-__all__ = ["add_run_parser", "config_from_args"]
+from recon3d.checks import EPS_SHARE, TOL_SHARE
+
+__all__ = ["add_run_parser", "run_command"]
+
+FLAGS = {"eps": "--eps", "tol": "--tol", "slices": "--slices", "axis": "--axis",
+         "jobs": "--jobs", "max_motions": "--max-motions", "probe_speed": "--probe-speed",
+         "motion_overhead": "--motion-overhead"}
 
 
 def add_run_parser(sub) -> None:
+    lo, hi = EPS_SHARE
     p = sub.add_parser(
-        "run", help="sense every slice of a mesh with the pulling-motion algorithm",
-        description="Slice INPUT, run the paper's 2D algorithm on every slice against "
-        "a simulated probe, and write DIR/sensing.json and DIR/metrics.json.",
+        "run", help="sense every slice of a mesh, rebuild its surface and score it",
+        description="Slice INPUT along one or more axes, run the paper's 2D algorithm on "
+        "every slice against a simulated probe, rebuild a watertight surface and score it "
+        "against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply, scene.vtm "
+        "(+ scene/) and coverage.png.",
     )
     p.add_argument("input", help="built-in scene name (see 'recon3d scenes') or mesh file")
     p.add_argument("--out", required=True, help="output directory (created if missing)")
-    p.add_argument("--axis", default="z", help="slice normal: x, y, z or nx,ny,nz (default z)")
-    p.add_argument("--slices", type=int, default=8, help="number of slices (default 8)")
+    p.add_argument("--axis", action="append", default=None, metavar="AXIS",
+                   help="slice normal: x, y, z, -x, ... or nx,ny,nz; repeat for several "
+                   "families fused into one surface (default z)")
+    p.add_argument("--slices", type=int, default=8, help="slices per axis (default 8)")
     p.add_argument("--eps", type=float, default=None,
-                   help="the paper's epsilon (default: bounding-box diagonal / 200)")
+                   help=f"the paper's epsilon, in mesh units (default: bounding-box diagonal "
+                   f"/ 200; allowed: {lo:g} to {hi:g} x diagonal)")
+    p.add_argument("--tol", type=float, default=None,
+                   help=f"contact resolution (default eps/20; allowed: eps*{TOL_SHARE:g} "
+                   f"up to, not including, eps)")
     p.add_argument("--backend", choices=("embree", "exact"), default="embree",
                    help="contact backend (default embree)")
-    p.add_argument("--tol", type=float, default=None, help="contact resolution (default eps/20)")
     p.add_argument("--max-motions", type=int, default=20000,
                    help="motion budget per slice (default 20000)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(func=_run)
+    p.add_argument("--jobs", type=int, default=None,
+                   help="parallel processes (default: number of cores; results do not "
+                   "depend on it)")
+    p.add_argument("--probe-speed", type=float, default=20.0,
+                   help="joint speed for the robot time, mesh units per second (default 20; "
+                   "scenes are in mm)")
+    p.add_argument("--motion-overhead", type=float, default=0.2,
+                   help="seconds per motion for the robot time (default 0.2)")
+    p.add_argument("--no-png", action="store_true", help="skip coverage.png (no OpenGL)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bar, mesh report or notes (warnings still print)")
+    p.set_defaults(func=run_command)
 
 
-def config_from_args(args):
-    from recon3d.cli import UsageError
-    from recon3d.pipeline import RunConfig
-    from slicer import parse_axis
+def _progress_bar(total, name, quiet):
+    if quiet:
+        return None
+    from tqdm import tqdm
 
-    if args.slices < 1:
-        raise UsageError(f"--slices must be at least 1 (got {args.slices})")
-    for flag in ("eps", "tol"):
-        value = getattr(args, flag)
-        if value is not None and not value > 0:
-            raise UsageError(f"--{flag} must be a positive number (got {value})")
-    if args.max_motions < 1:
-        raise UsageError(f"--max-motions must be at least 1 (got {args.max_motions})")
-    try:
-        axis = parse_axis(args.axis)
-    except ValueError as exc:
-        raise UsageError(f"--axis: {exc}") from None
-    return RunConfig(axis=axis, slices=args.slices, eps=args.eps, backend=args.backend,
-                     tol=args.tol, max_motions=args.max_motions)
+    return tqdm(total=total, desc=f"sensing {name}", unit="slice", file=sys.stderr)
 
 
-def _run(args) -> int:
-    from recon3d.cli import UsageError
-
-    config = config_from_args(args)
-    import meshes
-    from recon3d.output import metrics_document, sensing_document, write_json
-    from recon3d.pipeline import sense_mesh
+def run_command(args) -> int:
+    from recon3d.api import execute, load_input, make_config, validate
+    from recon3d.checks import InputError, check_out_dir
+    from recon3d.cli import UsageError, warn
+    from recon3d.summary import summary_lines
 
     try:
-        mesh = meshes.load(args.input)
-    except meshes.MeshError as exc:
+        config = make_config(args.axis or ["z"], args.slices, args.eps, args.tol, args.backend,
+                             args.jobs, args.max_motions, args.probe_speed,
+                             args.motion_overhead)
+        mesh, name, notes = load_input(args.input)
+        notes += validate(mesh, config, FLAGS)
+        check_out_dir(args.out, "--out")
+    except InputError as exc:
         raise UsageError(str(exc)) from None
-    if Path(args.input).exists() and not args.quiet:
+    import meshes
+
+    if os.path.exists(args.input) and not args.quiet:  # a file: one-line report (units, scale)
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"--out {out} exists and is not a directory")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsageError(f"cannot create --out {out}: {exc.strerror}") from None
-    name = Path(args.input).name if Path(args.input).exists() else args.input
-    bar = None
-    if not args.quiet:
-        from tqdm import tqdm
+    for note in notes:
+        warn(note)
+    bar = _progress_bar(config.slices * len(config.axes), name, args.quiet)
 
-        bar = tqdm(total=config.slices, desc=f"sensing {name}", unit="slice", file=sys.stderr)
-
-    def progress(srun):
+    def progress(outcome):
         if bar is not None:
             bar.update(1)
-            bar.set_postfix(motions=srun.result.stats.motions,
-                            coverage=f"{srun.metrics.get('coverage', float('nan')):.3f}")
+            cov = outcome.metrics.get("coverage")
+            bar.set_postfix(motions=outcome.result.stats.motions,
+                            coverage="n/a" if cov is None else f"{cov:.3f}")
+
+    def stage(what):
+        if bar is not None:
+            bar.set_description(f"{what} {name}")
 
     try:
-        run = sense_mesh(mesh, name, config, progress)
+        result = execute(mesh, name, config, progress=progress, stage=stage)
+        if bar is not None:
+            bar.set_description(f"writing {name}")
+        files = result.save(args.out, png=not args.no_png)
     finally:
         if bar is not None:
             bar.close()
-    write_json(out / "sensing.json", sensing_document(run))
-    write_json(out / "metrics.json", metrics_document(run))
-    _summary(run, out)
+    for note in result.warnings:
+        if not args.quiet:
+            print(f"recon3d: note: {note}", file=sys.stderr)
+    print("\n".join(summary_lines(result, files)))
     return 0
-
-
-def _summary(run, out) -> None:
-    t = run.totals
-    hits = sum(s.result.stats.budget_hit for s in run.slices)
-    print(f"{run.name}: {len(run.slices)} slices, eps {run.eps:.4g}, "
-          f"{run.seconds:.1f} s")
-    print(f"  reachable coverage {t.get('coverage', float('nan')):.4f}  "
-          f"precision {t.get('precision', float('nan')):.4f}  "
-          f"W3 soundness {t.get('w3_soundness', float('nan')):.4f}")
-    print(f"  motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  "
-          f"pushes {t.get('pushes', 0)}  budget hits {hits}")
-    print(f"  wrote {out / 'sensing.json'} and {out / 'metrics.json'}")

@@ -1,0 +1,96 @@
+"""The VTK multiblock of a run (``scene.vtm``): what the pictures are drawn from.
+
+Blocks, all in world coordinates:
+
+* ``ground_truth`` -- the mesh subdivided to the grid step, cell array
+  ``coverage`` (0 outside the slab, 1 touched, 2 reachable but missed,
+  3 unreachable; :data:`recon3d.evaluate.COVERAGE_CLASSES`);
+* ``surface`` -- the reconstruction, cell array ``label``
+  (:data:`recon3d.surface.LABELS`);
+* ``curves`` -- the sensed slice curves as lines, cell arrays ``class``
+  (1 W1, 2 W2, 3 W3, 4 unknown), ``family`` and ``slice``.
+
+Plain data: drawing is in :mod:`recon3d.plot`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["CURVE_CLASSES", "curves_polydata", "scene_blocks", "read_scene"]
+
+CURVE_CLASSES = {1: "W1", 2: "W2", 3: "W3", 4: "unknown"}
+"""Codes of the ``class`` array of the curves block."""
+
+
+def _lines(polylines):
+    """VTK ``lines`` connectivity and points for a list of (k, 3) polylines."""
+    pts = np.concatenate(polylines) if polylines else np.zeros((0, 3))
+    sizes = np.array([len(p) for p in polylines], dtype=np.int64)
+    starts = np.cumsum(sizes) - sizes
+    conn = [np.concatenate([[n], s + np.arange(n)]) for n, s in zip(sizes, starts)]
+    return pts, (np.concatenate(conn) if conn else np.zeros(0, dtype=np.int64))
+
+
+def curves_polydata(slice_runs):
+    """pyvista.PolyData of the sensed curves of ``slice_runs`` (see module doc)."""
+    import pyvista as pv
+
+    polys, cls, fam, idx = [], [], [], []
+    for s in slice_runs:
+        r = s.result
+        for code, group in ((1, r.w1), (2, r.w2), (3, r.w3), (4, r.unknown)):
+            for pl in group:
+                pl = np.asarray(pl, dtype=np.float64).reshape(-1, 2)
+                if len(pl) >= 2:
+                    polys.append(s.slice.to_3d(pl))
+                    cls.append(code)
+                    fam.append(s.family)
+                    idx.append(s.slice.index)
+    pts, lines = _lines(polys)
+    out = pv.PolyData(pts, lines=lines) if len(polys) else pv.PolyData()
+    if len(polys):
+        out.cell_data["class"] = np.array(cls, dtype=np.int32)
+        out.cell_data["family"] = np.array(fam, dtype=np.int32)
+        out.cell_data["slice"] = np.array(idx, dtype=np.int32)
+    return out
+
+
+def _polydata(mesh, name: str):
+    import pyvista as pv
+
+    if len(mesh.faces) == 0:
+        return pv.PolyData()
+    out = pv.PolyData.from_regular_faces(np.asarray(mesh.vertices, dtype=np.float64),
+                                         np.asarray(mesh.faces, dtype=np.int64))
+    out.cell_data[name] = np.asarray(mesh.face_attributes[name]).astype(np.int32)
+    return out
+
+
+def scene_blocks(ground_truth, surface, slice_runs):
+    """pyvista.MultiBlock with ``ground_truth``, ``surface`` and ``curves``.
+
+    Parameters
+    ----------
+    ground_truth : trimesh.Trimesh with ``face_attributes['coverage']``
+        (:func:`recon3d.evaluate.coverage_mesh`).
+    surface : trimesh.Trimesh with ``face_attributes['label']``.
+    slice_runs : list of recon3d.pipeline.SliceRun
+    """
+    import pyvista as pv
+
+    blocks = pv.MultiBlock()
+    blocks["ground_truth"] = _polydata(ground_truth, "coverage")
+    blocks["surface"] = _polydata(surface, "label")
+    blocks["curves"] = curves_polydata(slice_runs)
+    return blocks
+
+
+def read_scene(path):
+    """Read a ``scene.vtm`` back; ValueError (one line) when it is not one of ours."""
+    import pyvista as pv
+
+    blocks = pv.read(str(path))
+    names = set(blocks.keys()) if isinstance(blocks, pv.MultiBlock) else set()
+    if not {"ground_truth", "surface", "curves"} <= names:
+        raise ValueError(f"{path} is not a recon3d scene (blocks: {sorted(names)})")
+    return blocks

@@ -1,0 +1,167 @@
+"""Sense one slice and score it: the unit of work of a run (one process each).
+
+A worker rebuilds the slices of every family from the mesh (Embree scenes
+do not pickle), senses the slices it is given with :func:`core2d.sense_slice`
+and scores them with :func:`core2d.truth.metrics.slice_metrics`. The same
+code runs in-process for ``jobs=1``, so results do not depend on ``jobs``.
+
+Slices of an open mesh whose reference section is not made of closed loops
+alone (no loop, or open chains beside the loops) have no reference: every
+metric that needs one is ``None`` and the slice is left out of the accuracy
+totals; its cost counters still count.
+"""
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+import core2d
+import slicer
+from core2d.truth.metrics import slice_metrics
+from core2d.truth.reachability import reachable_samples
+
+__all__ = ["SenseSettings", "ContourTruth", "SliceOutcome", "WorkerState", "family_slices",
+           "no_reference_metrics"]
+
+
+@dataclass(frozen=True)
+class SenseSettings:
+    """What every slice of a run shares.
+
+    axes : tuple of (3,) float -- one unit normal per family.
+    slices : int -- planes per family.
+    eps, tol : float -- the paper's eps and the contact resolution.
+    backend : str -- 'embree' or 'exact'.
+    max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
+    """
+
+    axes: tuple
+    slices: int
+    eps: float
+    tol: float
+    backend: str
+    max_motions: int
+    bootstrap: int
+
+    @property
+    def metric_tol(self) -> float:
+        """Distance tolerance of the metrics: eps / 2 (see core2d.truth.metrics)."""
+        return 0.5 * self.eps
+
+    @property
+    def spacing(self) -> float:
+        """Reference contour sampling step: eps / 4."""
+        return 0.25 * self.eps
+
+
+@dataclass
+class ContourTruth:
+    """Reference contour samples of one slice, for the 3D evaluation.
+
+    points : (m, 2) float -- sample points in the slice frame.
+    lengths : (m,) float -- contour length each sample stands for.
+    reachable : (m,) bool -- exact 2D reachability.
+    covered : (m,) bool -- reachable and within ``metric_tol`` of W1 u W2.
+    """
+
+    points: np.ndarray
+    lengths: np.ndarray
+    reachable: np.ndarray
+    covered: np.ndarray
+
+    @classmethod
+    def empty(cls) -> "ContourTruth":
+        z = np.zeros(0, dtype=bool)
+        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy())
+
+
+@dataclass
+class SliceOutcome:
+    """What a worker sends back for one slice (plain, picklable data)."""
+
+    family: int
+    index: int
+    result: object
+    metrics: dict
+    workspace: tuple
+    truth: ContourTruth
+
+
+def family_slices(mesh, axis, count):
+    """``slicer.slice_mesh`` with its degenerate-plane log silenced (reported by the caller)."""
+    log = logging.getLogger("slicer.degenerate")
+    level = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        return slicer.slice_mesh(mesh, axis=axis, count=count)
+    finally:
+        log.setLevel(level)
+
+
+def no_reference_metrics(result, settings: SenseSettings) -> dict:
+    """The metrics of a slice without reference: the keys of ``slice_metrics``,
+    every value None except the cost counters of ``result.stats``."""
+    st = settings
+    keys = slice_metrics([], core2d.SliceResult(), st.eps, tol=st.metric_tol, spacing=st.spacing)
+    out = {k: None for k in keys}
+    out.update(result.stats.as_dict())
+    return out
+
+
+def _covered(points, result, tol) -> np.ndarray:
+    """(m,) bool: within ``tol`` of the W1 polylines and W2 segments."""
+    parts = [np.asarray(p, dtype=np.float64).reshape(-1, 2) for p in (*result.w1, *result.w2)]
+    parts = [p for p in parts if len(p) >= 2]
+    if not parts or len(points) == 0:
+        return np.zeros(len(points), dtype=bool)
+    idx = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
+    tree = shapely.STRtree(shapely.linestrings(np.concatenate(parts), indices=idx))
+    hit, dist = tree.query_nearest(shapely.points(points), return_distance=True,
+                                   all_matches=False)
+    out = np.zeros(len(points), dtype=bool)
+    out[hit[0]] = dist <= tol
+    return out
+
+
+class WorkerState:
+    """The slices of every family of one mesh, rebuilt in the process that senses them."""
+
+    def __init__(self, vertices, faces, settings: SenseSettings):
+        import trimesh
+
+        self.mesh = trimesh.Trimesh(vertices, faces, process=False)
+        self.settings = settings
+        self._families: dict[int, list] = {}
+
+    def slices(self, family: int) -> list:
+        if family not in self._families:
+            axis = self.settings.axes[family]
+            self._families[family] = family_slices(self.mesh, axis, self.settings.slices)
+        return self._families[family]
+
+    def sense(self, family: int, index: int) -> SliceOutcome:
+        """Sense slice ``index`` of ``family`` and score it against its reference."""
+        st = self.settings
+        cut = self.slices(family)[index]
+        if cut.is_empty:
+            result = core2d.SliceResult()
+            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
+                                (np.zeros(2), 0.0), ContourTruth.empty())
+        center, radius = cut.bounding_circle()
+        workspace = (np.asarray(center, float), float(radius) + st.eps)
+        result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
+                                    max_motions=st.max_motions, bootstrap_count=st.bootstrap)
+        if not cut.loops or cut.open_chains:
+            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
+                                workspace, ContourTruth.empty())
+        loops = [np.asarray(lp) for lp in cut.loops]
+        samples = reachable_samples(loops, st.spacing)
+        metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
+                                samples=samples)
+        samp, reach = samples
+        covered = reach & _covered(samp.points, result, st.metric_tol)
+        truth = ContourTruth(samp.points, samp.lengths, reach, covered)
+        return SliceOutcome(family, index, result, metrics, workspace, truth)

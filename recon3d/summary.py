@@ -1,0 +1,73 @@
+"""The end-of-run summary printed by ``recon3d run`` (plain text lines)."""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["summary_lines", "format_seconds"]
+
+
+def format_seconds(s: float | None) -> str:
+    """Human duration.
+
+    >>> format_seconds(42.0), format_seconds(4000.0), format_seconds(None)
+    ('42 s', '1 h 06 min', 'n/a')
+    """
+    if s is None:
+        return "n/a"
+    if s < 60:
+        return f"{s:.0f} s"
+    if s < 3600:
+        return f"{s / 60:.1f} min"
+    return f"{int(s // 3600)} h {int(s % 3600 // 60):02d} min"
+
+
+def _num(x, fmt=".4f") -> str:
+    return "n/a" if x is None else format(x, fmt)
+
+
+def _names(run, slices) -> str:
+    shown = [f"{run.families[s.family].label}#{s.slice.index}" for s in slices[:12]]
+    more = f" and {len(slices) - 12} more" if len(slices) > 12 else ""
+    return ", ".join(shown) + more
+
+
+def summary_lines(result, files=()) -> list[str]:
+    """Lines of the summary of a :class:`recon3d.api.Result`."""
+    run, m = result.sensing, result.metrics
+    t, surf, ev = m["total"], m["total"].get("surface"), m["surface_eval"]
+    fams = ", ".join(f"{f.label} x{len(f.slices)}" for f in run.families)
+    lines = [f"{run.name}: slices {fams}, eps {run.eps:.4g}, tol {run.tol:.3g}, "
+             f"{run.jobs} job{'s' if run.jobs > 1 else ''}, {run.seconds:.1f} s sensing"]
+    lines.append(f"  2D  reachable coverage {_num(t.get('coverage'))}  precision "
+                 f"{_num(t.get('precision'))}  W3 soundness {_num(t.get('w3_soundness'))} "
+                 f"({t.get('w3_count', 0)} lids)")
+    if surf is not None:
+        diag = float(np.linalg.norm(np.ptp(result.mesh.bounds, axis=0)))
+        cd = surf["chamfer_l1"] / diag if surf["chamfer_l1"] is not None else None
+        lines.append(f"  3D  F@1% {_num(surf['fscore']['1%'], '.3f')}  Chamfer-L1/diagonal "
+                     f"{_num(cd, '.2e')}  reachable F@1% "
+                     f"{_num(surf['reachable']['fscore']['1%'], '.3f')}  surface coverage "
+                     f"{_num(ev.get('coverage'), '.3f')}  ({len(result.surface.faces)} faces, "
+                     f"watertight {result.surface.is_watertight})")
+        for fam in ev.get("families", [])[1:]:
+            g = fam["gain"]
+            lines.append(f"      + axis {fam['axis']}: F@1% {_num(g['fscore_1%'], '+.3f')}  "
+                         f"coverage {_num(g['coverage'], '+.3f')}")
+    else:
+        lines.append("  3D  no surface: " + ("; ".join(ev.get("notes", [])) or "nothing sensed"))
+    lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
+                 f"{t.get('pushes', 0)}  budget hits {t.get('budget_hits', 0)}  robot time "
+                 f"{format_seconds(t.get('robot_time_s'))} (at {run.config.probe_speed:g} "
+                 f"units/s + {run.config.motion_overhead:g} s/motion)")
+    several = [s for s in run.slices if s.outer_loops > 1]
+    if several:
+        lines.append(f"  {len(several)} slices hold several objects (outside the paper's "
+                     f"single-object assumption, §3.2; W3 lids between objects count as "
+                     f"unsound): {_names(run, several)}")
+    noref = [s for s in run.slices if not s.has_reference]
+    if noref:
+        lines.append(f"  {len(noref)} slices have no closed reference contour (open mesh): "
+                     f"metrics null, left out of the 2D totals: {_names(run, noref)}")
+    if files:
+        lines.append(f"  wrote {files[0].parent}/: {' '.join(sorted(f.name for f in files))}")
+    return lines

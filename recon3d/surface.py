@@ -1,0 +1,226 @@
+"""Watertight labelled surface from the slice regions of one or more families.
+
+Route: per family, the field of :mod:`recon3d.field` is contoured at 0 with
+VTK flying edges (positive inside) and moved to world coordinates; the
+level set extends one layer beyond the first and last slice.
+``manifold3d`` checks it and makes the solid exact at the slab ends:
+family ``f`` proves empty the part of its slab (the box between its first
+and last slice) outside its level set, ``E_f = slab_f - level_f``, and the
+surface bounds
+
+    S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)
+
+(``E_f`` is cut from a slightly larger box, half a layer longer at each
+end, so that no face of it is coplanar with a face of the slabs: coplanar
+faces would leave zero-volume sheets.)
+
+With one family this is the level set cut to its slab (flat caps at the
+first and last slice). With several, space shown free by any family is
+free -- the space-carving rule of visual hulls: each family's solid holds
+what it could not see (holes filled, W3 lids over undercuts) -- and each
+family adds the part of the object only its slab reaches.
+
+Face labels (``LABELS``): a face with a vertex on a slice plane takes the
+kind of the nearest sensed piece of that slice (W1 -> 1, W2 -> 2, W3 -> 3;
+unknown chords and bridges -> 4); other faces of the level set are
+interpolated between slices (4); faces on a plane that bounds a slab are
+caps (5). ``manifold3d`` carries the labels through the booleans as face
+ids.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from recon3d.closure import KIND_LABEL, sample_pieces
+from recon3d.field import family_grid, family_volume
+
+__all__ = ["LABELS", "FamilySolid", "family_solid", "fuse", "empty_surface"]
+
+#: margin of the box the slabs are cut from, times the largest extent
+_BOX_MARGIN = 0.05
+
+LABELS = {1: "W1 traced", 2: "W2 approximated", 3: "W3 lid", 4: "between slices", 5: "cap"}
+"""Surface face label codes and their names."""
+
+
+@dataclass(frozen=True)
+class FamilySolid:
+    """One family's level set (one layer beyond its slab at each end).
+
+    manifold : manifold3d.Manifold
+    original_id : int -- manifold3d run id of the level set.
+    labels : (f,) int -- label of each level-set face (manifold face id).
+    normal : (3,) float -- the family's unit normal.
+    slab : (2,) float -- first and last slice offsets along ``normal``.
+    overshoot : float -- how far beyond the slab ``E_f`` is cut (half a layer).
+    """
+
+    manifold: object
+    original_id: int
+    labels: np.ndarray
+    normal: np.ndarray
+    slab: tuple
+    overshoot: float
+
+
+def _piece_trees(regions, step):
+    """Per slice: a KD-tree over the pieces sampled every step / 4, and their labels."""
+    from scipy.spatial import cKDTree
+
+    out = []
+    for reg in regions:
+        pts, owner = sample_pieces(reg.pieces, step / 4)
+        lab = np.array([KIND_LABEL[p.kind] for p in reg.pieces], dtype=np.int32)
+        out.append((cKDTree(pts) if len(pts) else None, lab[owner] if len(pts) else lab))
+    return out
+
+
+def _face_labels(points, faces, grid, regions) -> np.ndarray:
+    """(f,) int: label of every level-set face (see module doc).
+
+    points : (n, 3) float -- (x, y, layer) grid coordinates.
+    faces : (f, 3) int
+    """
+    z = points[:, 2]
+    zr = np.round(z)
+    sl = (zr - 1) / grid.k
+    on = (np.abs(z - zr) < 1e-9) & (sl == np.round(sl)) & (sl >= 0) & (sl <= len(regions) - 1)
+    vslice = np.where(on, sl, -1).astype(np.int64)
+    fs = vslice[faces]  # (f, 3)
+    face_slice = fs.max(axis=1)
+    labels = np.full(len(faces), 4, dtype=np.int32)
+    trees = _piece_trees(regions, grid.step)
+    for i in np.unique(face_slice[face_slice >= 0]):
+        sel = np.flatnonzero(face_slice == i)
+        mask = (fs[sel] == i)[:, :, None]
+        xy = (points[faces[sel], :2] * mask).sum(axis=1) / mask.sum(axis=1)
+        tree, lab = trees[i]
+        if tree is None:
+            continue
+        d, j = tree.query(xy, distance_upper_bound=2 * grid.step)
+        hit = np.isfinite(d)
+        labels[sel[hit]] = lab[j[hit]]
+    return labels
+
+
+def family_solid(regions, planes, step: float) -> FamilySolid | None:
+    """Level set of one family's field (see module doc).
+
+    Parameters
+    ----------
+    regions : list of SliceRegion -- one per plane.
+    planes : list of slicer.SlicePlane -- same family (same frame), >= 2.
+    step : float -- grid step (see :func:`recon3d.field.grid_step`).
+
+    Returns
+    -------
+    FamilySolid, or None when nothing was sensed.
+    """
+    import manifold3d
+    import pyvista as pv
+
+    order = np.argsort([p.offset for p in planes], kind="stable")
+    planes = [planes[i] for i in order]
+    regions = [regions[i] for i in order]
+    heights = np.array([p.offset for p in planes])
+    grid = family_grid(regions, heights, step)
+    vol = family_volume(regions, grid)
+    img = pv.ImageData(dimensions=(grid.shape[0], grid.shape[1], grid.layers),
+                       spacing=(step, step, 1.0), origin=(grid.x0, grid.y0, 0.0))
+    img.point_data["f"] = vol.ravel()
+    iso = img.contour([0.0], scalars="f", method="flying_edges")
+    if iso.n_cells == 0:
+        return None
+    faces = iso.faces.reshape(-1, 4)
+    if not (faces[:, 0] == 3).all():  # pragma: no cover - flying edges makes triangles
+        raise RuntimeError("level set produced non-triangular faces")
+    faces = np.ascontiguousarray(faces[:, 1:], dtype=np.int64)
+    pts = np.asarray(iso.points, dtype=np.float64)
+    labels = _face_labels(pts, faces, grid, regions)
+    p0 = planes[0]
+    h = grid.layer_height(pts[:, 2])
+    world = p0.origin + np.outer(pts[:, 0], p0.u) + np.outer(pts[:, 1], p0.v) \
+        + np.outer(h - p0.offset, p0.normal)
+    mesh = manifold3d.Mesh64(vert_properties=np.ascontiguousarray(world),
+                             tri_verts=faces.astype(np.uint64),
+                             face_id=np.arange(len(faces), dtype=np.uint64))
+    man = manifold3d.Manifold(mesh)
+    if man.status() != manifold3d.Error.NoError:  # pragma: no cover - flying edges is closed
+        raise RuntimeError(f"level set is not a manifold: {man.status().name}")
+    oid = int(np.asarray(man.to_mesh64().run_original_id)[0])
+    n = np.asarray(p0.normal, dtype=np.float64)
+    delta = 0.5 * float(np.diff(heights).min()) / grid.k
+    return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])), delta)
+
+
+def empty_surface():
+    """A trimesh without faces, with an empty ``label`` face attribute."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), process=False)
+    mesh.face_attributes["label"] = np.zeros(0, dtype=np.int32)
+    return mesh
+
+
+def _box(solids, bounds, margin: float = _BOX_MARGIN):
+    """A box around the level sets and ``bounds`` ((2, 3) float), with a margin."""
+    import manifold3d
+
+    boxes = [np.reshape(s.manifold.bounding_box(), (2, 3)) for s in solids]
+    if bounds is not None:
+        boxes.append(np.asarray(bounds, dtype=np.float64).reshape(2, 3))
+    lo = np.min([b[0] for b in boxes], axis=0)
+    hi = np.max([b[1] for b in boxes], axis=0)
+    pad = margin * float((hi - lo).max())
+    return manifold3d.Manifold.cube((hi - lo) + 2 * pad).translate(lo - pad)
+
+
+def fuse(solids, bounds=None) -> object:
+    """The surface of ``S = union of slabs - union of E_f`` (module doc).
+
+    Parameters
+    ----------
+    solids : list of FamilySolid (None entries are skipped).
+    bounds : (2, 3) float, optional -- the ground truth's bounds (the slabs
+        are cut from a box around these and the level sets).
+
+    Returns
+    -------
+    trimesh.Trimesh -- watertight, float64 vertices,
+    ``face_attributes['label']`` (f,) int32; empty when nothing remains.
+    """
+    import manifold3d
+    import trimesh
+
+    solids = [s for s in solids if s is not None]
+    if not solids:
+        return empty_surface()
+    box = _box(solids, bounds)
+    big = _box(solids, bounds, 2 * _BOX_MARGIN)
+    slabs, empty = [], []
+    for s in solids:
+        n, (lo, hi), d = s.normal, s.slab, s.overshoot
+        slabs.append(box.trim_by_plane(n, lo).trim_by_plane(-n, -hi))
+        empty.append(big.trim_by_plane(n, lo - d).trim_by_plane(-n, -(hi + d)) - s.manifold)
+    op = manifold3d.OpType
+    man = manifold3d.Manifold.batch_boolean(slabs, op.Add) - \
+        manifold3d.Manifold.batch_boolean(empty, op.Add)
+    if man.is_empty():
+        return empty_surface()
+    out = man.to_mesh64()
+    tri = np.asarray(out.tri_verts, dtype=np.int64)
+    fid = np.asarray(out.face_id, dtype=np.int64)
+    run = np.asarray(out.run_index, dtype=np.int64) // 3
+    rid = np.asarray(out.run_original_id, dtype=np.int64)
+    labels = np.full(len(tri), 5, dtype=np.int32)
+    owners = {s.original_id: s.labels for s in solids}
+    for k, oid in enumerate(rid):
+        if oid in owners:
+            sl = slice(run[k], run[k + 1])
+            labels[sl] = owners[oid][fid[sl]]
+    verts = np.asarray(out.vert_properties, dtype=np.float64)[:, :3]
+    mesh = trimesh.Trimesh(verts, tri, process=False)
+    mesh.face_attributes["label"] = labels
+    return mesh

@@ -1,0 +1,84 @@
+"""Closing the sensed pieces of one slice into a filled region (recon3d.closure)."""
+import numpy as np
+import pytest
+import shapely
+
+from recon3d.closure import sample_pieces, slice_region
+
+SQUARE = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
+
+
+def _chain(points):
+    return np.asarray(points, dtype=float)
+
+
+def test_closed_w1_loop_fills_its_polygon():
+    loop = np.vstack([SQUARE, SQUARE[:1]])
+    reg = slice_region([loop], [], [], [], snap=1e-6)
+    assert reg.geometry.equals(shapely.Polygon(SQUARE))
+    assert not [p for p in reg.pieces if p.kind == "bridge"]
+
+
+@pytest.mark.parametrize("gap", [1e-7, 0.3, 4.0])
+def test_gaps_are_bridged_small_or_large(gap):
+    """An area left unknown or an opening between two objects leaves the curve
+    open by ``gap``: the two free ends are joined by one bridge."""
+    chain = _chain([[0.0, gap], [0.0, 10.0], [10.0, 10.0], [10.0, 0.0], [0.0, 0.0]])
+    reg = slice_region([chain], [], [], [], snap=1e-6)
+    assert reg.area == pytest.approx(100.0)
+    bridges = [p for p in reg.pieces if p.kind == "bridge"]
+    assert (len(bridges) == 1) == (gap > 1e-6)
+    assert reg.bridge_length == pytest.approx(gap if gap > 1e-6 else 0.0)
+
+
+def test_w2_w3_and_unknown_pieces_close_the_curve_and_keep_their_kind():
+    w1 = [_chain([[0, 0], [10, 0], [10, 10]]), _chain([[6, 10], [0, 10], [0, 4]])]
+    w2 = [_chain([[10, 10], [8, 10]])]
+    w3 = [_chain([[8, 10], [6, 10]])]
+    unknown = [_chain([[0, 4], [0, 0]])]
+    reg = slice_region(w1, w2, w3, unknown, snap=1e-6)
+    assert reg.area == pytest.approx(100.0)
+    assert sorted(p.kind for p in reg.pieces) == ["W1", "W1", "W2", "W3", "unknown"]
+
+
+def test_w3_lid_closes_an_undercut_pocket():
+    """A lid across a pocket mouth puts the pocket inside the region."""
+    u = _chain([[4, 10], [4, 6], [2, 6], [2, 2], [8, 2], [8, 6], [6, 6], [6, 10]])
+    outer = _chain([[6, 10], [10, 10], [10, 0], [0, 0], [0, 10], [4, 10]])
+    with_lid = slice_region([outer], [], [_chain([[4, 10], [6, 10]])], [], snap=1e-6)
+    traced = slice_region([outer, u], [], [], [], snap=1e-6)
+    pocket = shapely.Polygon(u).area
+    assert with_lid.area == pytest.approx(100.0)
+    assert traced.area == pytest.approx(100.0 - pocket)
+
+
+def test_hole_is_filled_and_islands_are_kept_apart():
+    hole = SQUARE[::-1] * 0.4 + 3.0
+    reg = slice_region([np.vstack([SQUARE, SQUARE[:1]]), np.vstack([hole, hole[:1]])],
+                       [], [], [], snap=1e-6)
+    assert reg.area == pytest.approx(100.0)  # the probe cannot see a hole
+    far = SQUARE + 20.0
+    two = slice_region([np.vstack([SQUARE, SQUARE[:1]]), np.vstack([far, far[:1]])],
+                       [], [], [], snap=1e-6)
+    assert two.geometry.geom_type == "MultiPolygon" and two.area == pytest.approx(200.0)
+
+
+def test_stray_and_duplicate_pieces_change_nothing():
+    loop = np.vstack([SQUARE, SQUARE[:1]])
+    stray = _chain([[30.0, 0.0], [40.0, 0.0]])  # straight: its bridge adds no area
+    dup = _chain([[0, 0], [10, 0], [10, 10]])  # traced twice
+    reg = slice_region([loop, dup], [stray], [], [], snap=1e-6)
+    assert reg.area == pytest.approx(100.0)
+
+
+def test_nothing_sensed_gives_an_empty_region():
+    reg = slice_region([], [], [], [], snap=1e-6)
+    assert reg.geometry.is_empty and reg.pieces == ()
+
+
+def test_sample_pieces_spacing_and_owner():
+    pts, owner = sample_pieces([_chain([[0, 0], [3, 0], [3, 4]]), _chain([[9, 9], [9, 9.5]])],
+                               0.5)
+    assert owner.tolist().count(1) == 2 and set(owner.tolist()) == {0, 1}
+    d = np.hypot(*np.diff(pts[owner == 0], axis=0).T)
+    assert d.max() <= 0.5 + 1e-12

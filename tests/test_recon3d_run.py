@@ -1,0 +1,155 @@
+"""End to end through the Python API: sense small scenes, rebuild, score, save.
+
+Scenes are small, slices few and eps coarse (diagonal / 60) to stay fast.
+Independent checks: trimesh on the written PLY, manifold3d, pyvista on the
+VTM, and core2d's exact reachability for the undercut.
+"""
+import os
+import stat
+
+import numpy as np
+import pytest
+import shapely
+
+import meshes
+import recon3d
+from core2d.truth.reachability import reachable
+
+BLOCK = {"accuracy", "completeness", "chamfer_l1", "hausdorff", "hd95", "fscore"}
+
+
+def _eps(name, share=1 / 60):
+    mesh = meshes.load(name)
+    return float(np.linalg.norm(np.ptp(mesh.bounds, axis=0))) * share
+
+
+@pytest.fixture(scope="module")
+def pocket():
+    """fig17_pocket: a smooth concave pocket, no undercut (extruded along z)."""
+    return recon3d.run("fig17_pocket", slices=3, eps=_eps("fig17_pocket"), jobs=1)
+
+
+@pytest.fixture(scope="module")
+def saved(pocket, tmp_path_factory):
+    out = tmp_path_factory.mktemp("run") / "pocket"
+    pocket.save(out)
+    return out
+
+
+def test_scene_without_undercut_reconstructs_in_the_slab(pocket):
+    surf = pocket.metrics["total"]["surface"]
+    assert set(surf) == BLOCK | {"reachable"} and set(surf["reachable"]) == BLOCK
+    assert set(surf["fscore"]) == {"0.5%", "1%", "2%"}
+    assert surf["fscore"]["1%"] >= 0.95 and surf["reachable"]["fscore"]["1%"] >= 0.95
+    assert surf["chamfer_l1"] == pytest.approx((surf["accuracy"] + surf["completeness"]) / 2)
+    assert pocket.metrics["total"]["robot_time_s"] > 0
+    dom = pocket.metrics["surface_eval"]["domain"]
+    offsets = [s.slice.plane.offset for s in pocket.slices]
+    assert dom == [{"normal": [0.0, 0.0, 1.0], "from": min(offsets), "to": max(offsets)}]
+
+
+def test_result_api(pocket):
+    assert len(pocket.slices) == 3 and pocket.surface.is_watertight
+    labels = set(np.unique(pocket.surface.face_attributes["label"]).tolist())
+    assert {1, 4, 5} <= labels <= {1, 2, 3, 4, 5}
+    assert pocket.metrics["slices"][0]["reference"] is True
+    assert pocket.sensing_document()["slices"][0]["segments"]
+
+
+def test_saved_files_contract(saved, pocket):
+    import pyvista as pv
+    import trimesh
+
+    names = {p.name for p in saved.iterdir()}
+    assert names == {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene",
+                     "coverage.png"}
+    for p in saved.rglob("*"):
+        mode = stat.S_IMODE(os.stat(p).st_mode)
+        assert mode == (0o755 if p.is_dir() else 0o644), p
+    ply = trimesh.load(saved / "surface.ply")  # processed: vertices merged by trimesh
+    assert ply.is_watertight and len(ply.faces) == len(pocket.surface.faces)
+    labels = recon3d.read_ply_labels(saved / "surface.ply").face_attributes["label"]
+    assert np.array_equal(labels, pocket.surface.face_attributes["label"])
+    blocks = pv.read(saved / "scene.vtm")
+    assert set(blocks.keys()) == {"ground_truth", "surface", "curves"}
+    assert np.array_equal(blocks["surface"].cell_data["label"], labels)
+    assert set(np.unique(blocks["curves"].cell_data["class"])) <= {1, 2, 3, 4}
+    assert set(np.unique(blocks["ground_truth"].cell_data["coverage"])) <= {0, 1, 2, 3}
+
+
+def test_coverage_png_is_not_blank(saved):
+    from matplotlib.image import imread
+
+    img = imread(saved / "coverage.png")
+    assert img.shape[:2] == (800, 1600)
+    rgb = (img[..., :3] * 255).astype(np.uint8).reshape(-1, 3)
+    colours = np.unique(rgb, axis=0)
+    not_white = (rgb < 240).any(axis=1).mean()
+    assert len(colours) > 100 and not_white > 0.1
+    for half in (rgb.reshape(800, 1600, 3)[:, :800], rgb.reshape(800, 1600, 3)[:, 800:]):
+        assert (half < 240).any(axis=2).mean() > 0.05  # both panels drawn
+
+
+def test_undercut_gets_w3_faces_over_unreachable_contour():
+    """mushroom: the chamber behind the neck cannot be touched; W3 lids close
+    it and the faces at the lids are labelled 3. Checked against the exact 2D
+    reachability of the nearest true contour point (core2d, not recon3d)."""
+    res = recon3d.run("mushroom", slices=3, eps=_eps("mushroom"), jobs=2)
+    surf = res.surface
+    lab = surf.face_attributes["label"]
+    assert (lab == 3).sum() > 0
+    c3 = surf.triangles_center[lab == 3]
+    unreachable, outside, total = 0, 0, 0
+    for s in res.slices:
+        pl = s.slice.plane
+        sel = np.abs(c3 @ pl.normal - pl.offset) < res.recon.step
+        if not sel.any():
+            continue
+        p2 = pl.to_2d(c3[sel])
+        loops = [np.asarray(lp) for lp in s.slice.loops]
+        ring = shapely.MultiLineString([np.vstack([lp, lp[:1]]) for lp in loops])
+        near = shapely.get_coordinates(shapely.shortest_line(shapely.points(p2), ring))[1::2]
+        unreachable += int((~reachable(loops, near)).sum())
+        solid = shapely.union_all([shapely.Polygon(lp) for lp in loops])
+        outside += int((~shapely.contains_xy(solid, p2[:, 0], p2[:, 1])).sum())
+        total += int(sel.sum())
+    assert total == (lab == 3).sum()
+    assert unreachable >= 0.8 * total and outside >= 0.95 * total
+
+
+def test_plot_renders_offscreen(pocket, tmp_path):
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    pocket.plot(off_screen=True, screenshot=tmp_path / "p.png")
+    assert (tmp_path / "p.png").stat().st_size > 10_000
+
+
+def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, tmp_path,
+                                                                       monkeypatch):
+    import recon3d.plot
+
+    def no_gl(*args, **kwargs):
+        raise RuntimeError("no EGL\ndevice")
+
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "coverage.png").write_bytes(b"old picture")
+    monkeypatch.setattr(recon3d.plot, "save_png", no_gl)
+    with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
+        files = pocket.save(out)
+    assert {p.name for p in files} == {"sensing.json", "metrics.json", "surface.ply",
+                                       "scene.vtm", "scene"}
+    assert not (out / "coverage.png").exists()
+
+
+def test_failed_save_leaves_nothing(pocket, tmp_path, monkeypatch):
+    import recon3d.save
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(recon3d.save, "write_ply", broken)
+    with pytest.raises(OSError):
+        pocket.save(tmp_path / "new" / "deeper")
+    assert not (tmp_path / "new").exists()

@@ -28,6 +28,8 @@ class Area:
         for the §4.4 test over the whole ancestry.
     stale : int -- generations in a row whose processing traced no new contour.
     tries : int -- passes through the lid that found nothing new (revisits).
+    seen : tuple of (2,) float -- contacts at which revisit passes split
+        this area's ancestors (never new twice).
     """
 
     a: np.ndarray
@@ -44,6 +46,7 @@ class Area:
     lineage: tuple = ()
     stale: int = 0
     tries: int = 0
+    seen: tuple = ()
 
     @property
     def dist(self) -> float:

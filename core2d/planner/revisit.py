@@ -157,8 +157,21 @@ def _near_end(probe, area, point) -> bool:
 
 
 def _new_contact(run, area, point) -> bool:
-    """Farther than eps/2 from A_i and B_i and than 2 tol from the map."""
-    return not _near_end(run.probe, area, point) and run.known.distance(point) > 2 * run.probe.tol
+    """Is ``point`` new: farther than eps/2 from A_i and B_i and from every
+    contact an ancestor was split at by a pass, farther than 2 tol from the
+    map, and not making a child that repeats the A and B of an ancestor
+    (§4.4)?"""
+    probe = run.probe
+    if _near_end(probe, area, point) or run.known.distance(point) <= 2 * probe.tol:
+        return False
+    if area.seen and np.hypot(*(np.asarray(area.seen) - point).T).min() <= probe.tip_zone:
+        return False
+    same = probe.tip_zone
+    for a, b in area.lineage:
+        if (np.hypot(*(a - area.a)) <= same and np.hypot(*(b - point)) <= same) or (
+                np.hypot(*(a - point)) <= same and np.hypot(*(b - area.b)) <= same):
+            return False
+    return True
 
 
 def revisit_one(run, area):
@@ -190,9 +203,11 @@ def revisit_one(run, area):
         c = r.tip_contact
         if c is not None and _new_contact(run, area, c.point):
             pose_c = Posture(r.joint, r.direction)
-            d = area.depth + 1
-            kids = [Area(area.a, c.point, area.pose_a, pose_c, area.index, "revisit", d),
-                    Area(c.point, area.b, pose_c, area.pose_b, area.index, "revisit", d)]
+            d, seen = area.depth + 1, area.seen + (c.point,)
+            kids = [Area(area.a, c.point, area.pose_a, pose_c, area.index, "revisit", d,
+                         seen=seen),
+                    Area(c.point, area.b, pose_c, area.pose_b, area.index, "revisit", d,
+                         seen=seen)]
             return run.children(area, kids)
         area.tries += 1
         escaped |= c is None

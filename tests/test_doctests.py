@@ -18,6 +18,7 @@ MODULES = [
     "core2d.planar",
     "core2d.visibility",
     "core2d.planner.known",
+    "core2d.planner.local_search",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
 ]

@@ -75,3 +75,47 @@ def test_trace_pulls_without_pushing_and_counts_pushes_when_unguarded():
     q.insert()
     q.trace(-v * np.array([-1, 1]), -1, 5.0, guard_push=False)  # v.t > 0: pushing
     assert q.stats.pushes > 0
+
+
+def _pressed_on(loop, x, eps=1.0):
+    """A probe pointing straight down, inserted at ``x`` onto ``loop``."""
+    p = Probe(ExactContact([np.asarray(loop, float)]), (np.array([50.0, 25.0]), 70.0), eps)
+    p.approach([x, 80.0], [0.0, -1.0])
+    return p, p.insert()
+
+
+# a block with a shallow valley: faces fall 10 degrees towards (50, 50)
+_DROP = 50 * np.tan(np.radians(10.0))
+SHALLOW_V = [[0, 0], [100, 0], [100, 50 + _DROP], [50, 50], [0, 50 + _DROP]]
+FLAT = [[0, 0], [100, 0], [100, 50], [0, 50]]
+SLOPE = [[0, 0], [100, 0], [100, 50 + 2 * _DROP], [0, 50]]  # rising to the right
+
+
+@pytest.mark.parametrize("offset", [0.0, 0.3, -0.3])
+def test_torque_sensor_blocks_both_ways_at_a_shallow_concave_corner(offset):
+    """Fig. 10(a), a 160-degree valley: with the tip within tol of the local
+    concave point both rotations are blocked (the tip is pressed on the
+    surface; the old model, with the tip's stand-off, saw both free)."""
+    p, r = _pressed_on(SHALLOW_V, 50.0 + offset * p_tol())
+    assert r.tip_contact is not None
+    assert r.blocked_cw and r.blocked_ccw
+
+
+def p_tol(eps=1.0):
+    return eps / 20
+
+
+def test_torque_sensor_free_on_a_flat_surface_normal_to_the_probe():
+    """On a flat surface normal to the probe the tip's arc lifts off: both
+    rotations free (no constraint, Definition 5 has no value)."""
+    _, r = _pressed_on(FLAT, 30.0)
+    assert r.tip_contact is not None
+    assert not r.blocked_cw and not r.blocked_ccw
+
+
+def test_torque_sensor_one_way_on_a_slope():
+    """Fig. 10(b): on a slope rising to the right, rotating the tip to the
+    right (counter-clockwise for a probe pointing down) pushes it into the
+    surface: ccw blocked only."""
+    _, r = _pressed_on(SLOPE, 30.0)
+    assert r.blocked_ccw and not r.blocked_cw

@@ -23,7 +23,7 @@ from core2d.planar import wrap
 from core2d.readings import TIP
 from core2d.planner.regions import G_region, V_polygon, common_point, cross, in_V, polygonal
 
-__all__ = ["initial_pass", "bisection", "LocalResult"]
+__all__ = ["initial_pass", "bisection", "definition5", "LocalResult"]
 
 
 def _start_point(probe, G, a, b):
@@ -175,8 +175,30 @@ def bisection(probe, area, G, reading, max_iter=60):
     tip = r.tip_contact
     if tip is None:
         return None
-    Y1 = 1 if all(c.face == TIP for c in r.contacts) else 2
-    # Definition 5; unconstrained both ways (stalled or out of iterations) is
-    # treated like full constraint: Theorem 4 (A) traces both sides.
-    Y2 = 0 if con_cw == con_ccw else (1 if con_cw else -1)
+    Y1, Y2 = definition5(r)
     return LocalResult(r, tip.point, Y1, Y2, it)
+
+
+def definition5(reading) -> tuple[int, int]:
+    """(Y1, Y2) of Definition 5 from what the sensors report at D_i.
+
+    Y1: 1 when only the tip touches, 2 with other contacts. Y2: the rotational
+    constraint the environment puts on the probe, from the torque sensor --
+    0 both rotations blocked (Fig. 10(a), (c)), 1 clockwise only, -1
+    counter-clockwise only (Fig. 10(b)). The bisection's own swing bounds
+    (T_i^(n), G_i) are not a constraint of the environment and do not count.
+    A probe free both ways (normal to a flat stretch, stopped by the bounds)
+    has no value in Definition 5; it gets Y2 = 0, so Theorem 4 (A) traces
+    both sides, each under its own torque.
+
+    Examples
+    --------
+    >>> from core2d.readings import Contact, Reading
+    >>> tip = Contact(np.zeros(2), "tip", 1.0)
+    >>> r = Reading(np.zeros(2), np.array([0.0, -1.0]), (tip,), blocked_cw=True)
+    >>> definition5(r)
+    (1, 1)
+    """
+    Y1 = 1 if all(c.face == TIP for c in reading.contacts) else 2
+    cw, ccw = reading.blocked_cw, reading.blocked_ccw
+    return Y1, (0 if cw == ccw else (1 if cw else -1))

@@ -88,6 +88,9 @@ class KnownContour:
         self._piece = np.zeros(0, dtype=np.int64)  # piece of every segment
         self._first = []  # index of each piece's first segment
         self._next = []  # piece i -> [(j, k)]: piece j passes piece i's end at its segment k
+        self._ends = np.zeros((0, 2))  # last point of every piece
+        self._end_dirs = []  # _end_direction of every piece (computed once)
+        self._buf = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=np.int64))
 
     def add(self, polyline, pose_first=None, pose_last=None) -> None:
         """Record a piece, (k, 2) float with k >= 2, material on its right,
@@ -96,7 +99,8 @@ class KnownContour:
         if len(pl) < 2:
             return
         i = len(self.pieces)
-        ends = np.array([p[-1] for p in self.pieces]).reshape(-1, 2)
+        ends = self._ends
+        end_dir = _end_direction(pl, self.join)
         self.pieces.append(pl)
         self.poses.append((pose_first, pose_last))
         self._first.append(len(self._a))
@@ -104,19 +108,37 @@ class KnownContour:
         nxt = []
         if len(self._a):
             ok = (_point_segments(pl[-1], self._a, self._b) <= self.join) & _turns(
-                _end_direction(pl, self.join), self._b - self._a)
+                end_dir, self._b - self._a)
             for j in np.unique(self._piece[ok]):
                 nxt.append((int(j), int(np.argmax(ok[self._first[j]:]))))
         self._next.append(nxt)
-        for j in range(len(ends)):
-            other = self.pieces[j]
+        # only ends within ``join`` of the new piece's bounding box can pass
+        # it (with a margin far above the rounding of the distances below)
+        lo, hi = pl.min(axis=0), pl.max(axis=0)
+        reach = self.join + 1e-9 * (self.join + float(np.abs(np.r_[lo, hi]).max()))
+        lo, hi = lo - reach, hi + reach
+        near = np.flatnonzero(((ends >= lo) & (ends <= hi)).all(axis=1))
+        for j in near.tolist():
             ok = (_point_segments(ends[j], pl[:-1], pl[1:]) <= self.join) & _turns(
-                _end_direction(other, self.join), pl[1:] - pl[:-1])
+                self._end_dirs[j], pl[1:] - pl[:-1])
             if ok.any():
                 self._next[j].append((i, int(np.argmax(ok))))
-        self._a = np.concatenate([self._a, pl[:-1]])
-        self._b = np.concatenate([self._b, pl[1:]])
-        self._piece = np.concatenate([self._piece, np.full(len(pl) - 1, i)])
+        self._append(pl, i)
+        self._ends = np.concatenate([ends, pl[-1:]])
+        self._end_dirs.append(end_dir)
+
+    def _append(self, pl, i) -> None:
+        """Append the segments of piece ``i`` (amortised: buffers grow 2x)."""
+        n, k = len(self._a), len(pl) - 1
+        a, b, piece = self._buf
+        if n + k > len(a):
+            cap = max(2 * len(a), n + k, 64)
+            grown = tuple(np.empty((cap,) + x.shape[1:], x.dtype) for x in (a, b, piece))
+            for old, new in zip((a, b, piece), grown):
+                new[:n] = old[:n]
+            a, b, piece = self._buf = grown
+        a[n:n + k], b[n:n + k], piece[n:n + k] = pl[:-1], pl[1:], i
+        self._a, self._b, self._piece = a[:n + k], b[:n + k], piece[:n + k]
 
     def with_pieces(self, pieces) -> "KnownContour":
         """A copy of the map with ``pieces`` (each (k, 2) float) recorded too."""
@@ -269,9 +291,9 @@ def _end_direction(pl, span) -> np.ndarray:
 def _turns(d, e) -> np.ndarray:
     """(n,) bool: direction e turns less than 120 degrees from direction d."""
     e = np.asarray(e, float).reshape(-1, 2)
-    n = np.hypot(*e.T) * np.hypot(*d)
+    n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.nan_to_num((e @ d) / n, nan=1.0) > -0.5
+        return ~((e @ d) / n <= -0.5)  # nan (a zero-length direction) turns
 
 
 def _cross2(x, y):
@@ -283,10 +305,14 @@ def _param(p, a, b) -> np.ndarray:
     e = b - a
     l2 = np.einsum("ij,ij->i", e, e)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.nan_to_num(np.clip(np.einsum("ij,ij->i", p - a, e) / l2, 0.0, 1.0))
+        t = np.einsum("ij,ij->i", p - a, e) / l2
+    np.clip(t, 0.0, 1.0, out=t)
+    t[np.isnan(t)] = 0.0  # zero-length segments: their start
+    return t
 
 
 def _point_segments(p, a, b) -> np.ndarray:
     """(n,) distances from point p to segments a -> b."""
     t = _param(p, a, b)
-    return np.hypot(*(a + t[:, None] * (b - a) - p).T)
+    q = a + t[:, None] * (b - a) - p
+    return np.hypot(q[:, 0], q[:, 1])

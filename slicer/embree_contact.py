@@ -18,31 +18,29 @@ the ray. Robust mode is kept: without it ~4% of rays through vertices miss.
 
 Embree is asked for the primitive only (``query='INTERSECT'``, whole ray);
 ``max_dist`` is applied to the refined float64 distance. Small batches
-(``n <= SMALL_BATCH``) take a scalar Python path around the same Embree call
-(numpy's per-call overhead dominates there); larger ones a vectorised path.
-Both evaluate the same geometry in float64 and agree to rounding.
+(``n <= SMALL_BATCH``) are refined ray by ray in compiled code
+(:mod:`slicer.refine`: numpy's per-call overhead dominates there); larger
+ones on a vectorised numpy path. Both evaluate the same geometry in float64
+and agree to rounding.
 """
 from __future__ import annotations
 
 import logging
-from array import array
 
 import numpy as np
 from embreex import mesh_construction, rtcore_scene
 
 from slicer.degenerate import DEGENERATE_TOL, mesh_scale
+from slicer.refine import NO_LIMITS, fill_rays, refine_hits
 
 __all__ = ["EmbreeContact", "crossing_faces", "section_segments", "SMALL_BATCH"]
 
 logger = logging.getLogger(__name__)
 
 SMALL_BATCH = 24
-"""Batches up to this size use the scalar refinement path."""
+"""Batches up to this size use the compiled ray-by-ray refinement."""
 
-_INF = float("inf")
-_NAN = float("nan")
-_MISS = (_INF, _NAN, _NAN, _NAN, _NAN)
-_CNAN = complex(_NAN, _NAN)
+_CNAN = complex(float("nan"), float("nan"))
 
 
 def crossing_faces(heights_per_face) -> np.ndarray:
@@ -99,32 +97,6 @@ def section_segments(local) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(divide="ignore", invalid="ignore"):
         unit = np.where(length[:, None] > 0, right / length[:, None], 0.0)
     return seg, unit
-
-
-def _refine_ray(row, ox, oy, dx, dy, max_dist):
-    """Scalar float64 refinement of one hit against its triangle's segment.
-
-    ``row`` is ``(ax, ay, ex, ey, nx, ny)``: segment start, edge, unit
-    normal. Returns ``(distance, px, py, nx, ny)`` (the miss tuple when the
-    refined distance exceeds ``max_dist``).
-    """
-    ax, ay, ex, ey, nx, ny = row
-    wx = ax - ox
-    wy = ay - oy
-    den = dx * ey - dy * ex
-    if den != 0.0:
-        r = (wx * dy - wy * dx) / den
-        r = 0.0 if r < 0.0 else (1.0 if r > 1.0 else r)
-    else:  # ray along the segment's line: nearer endpoint
-        r = 0.0 if wx * dx + wy * dy <= (wx + ex) * dx + (wy + ey) * dy else 1.0
-    s = (wx + r * ex) * dx + (wy + r * ey) * dy
-    if s < 0.0:
-        s = 0.0
-    if s > max_dist:
-        return _MISS
-    if den > 0.0:
-        return (s, ox + s * dx, oy + s * dy, -nx + 0.0, -ny + 0.0)
-    return (s, ox + s * dx, oy + s * dy, nx + 0.0, ny + 0.0)
 
 
 class EmbreeContact:
@@ -188,11 +160,10 @@ class EmbreeContact:
         start = self.segments[:, 0]
         edge = self.segments[:, 1] - start
         table = np.hstack([start, edge, self.outward])  # (k, 6)
-        self._table = table
+        self._table = np.ascontiguousarray(table)
         self._start = start.copy().view(np.complex128)[:, 0]
         self._edge = np.ascontiguousarray(edge).view(np.complex128)[:, 0]
         self._normal = np.ascontiguousarray(self.outward).view(np.complex128)[:, 0]
-        self._rows = [tuple(r) for r in table.tolist()]
         self._triangles = np.ascontiguousarray(local[keep], dtype=np.float32)
         self._scene = None
         if len(self._triangles):
@@ -223,9 +194,7 @@ class EmbreeContact:
         self._o32 = np.zeros((cap, 3), np.float32)
         self._d32 = np.zeros((cap, 3), np.float32)
         self._cap = cap
-        self._views = {
-            k: (self._o32[:k], self._d32[:k]) for k in range(1, min(cap, SMALL_BATCH) + 1)
-        }
+        self._views = {}  # n -> the first n rows of the buffers (Embree reads whole arrays)
 
     def cast(self, origins, dirs, max_dist):
         """First contour hit of each in-plane ray (one Embree call).
@@ -268,34 +237,18 @@ class EmbreeContact:
         return self._refine(o, d, max_dist, prim)
 
     def _cast_small(self, o, d, max_dist, n):
-        ol, dl = o.tolist(), d.tolist()
-        if type(max_dist) is float or type(max_dist) is np.float64 or type(max_dist) is int:
-            ml = None
-        else:
-            ml = np.broadcast_to(np.asarray(max_dist, dtype=np.float64), (n,)).tolist()
-        rows = self._rows
-        if n == 1:  # the common case (insertions, bisection steps)
-            (ox, oy), (dx, dy) = ol[0], dl[0]
-            o32, d32 = self._views[1]
-            o32[0, 0] = ox
-            o32[0, 1] = oy
-            d32[0, 0] = dx
-            d32[0, 1] = dy
-            k = self._scene.run(o32, d32, query="INTERSECT").item()
-            md = max_dist if ml is None else ml[0]
-            res = np.array(_MISS if k < 0 else _refine_ray(rows[k], ox, oy, dx, dy, md))
-            return res[:1], res[None, 1:3], res[None, 3:5]
+        o32, d32 = self._o32, self._d32
+        fill_rays(o, d, o32, d32)
         views = self._views.get(n)
-        o32, d32 = views if views is not None else (self._o32[:n], self._d32[:n])
-        o32[:, :2] = o
-        d32[:, :2] = d
-        prim = self._scene.run(o32, d32, query="INTERSECT").tolist()
-        if ml is None:
-            ml = [max_dist] * n
-        flat = []  # n x 5 floats; array('d') -> numpy is ~2x faster than np.array(tuples)
-        for k, (ox, oy), (dx, dy), md in zip(prim, ol, dl, ml):
-            flat += _MISS if k < 0 else _refine_ray(rows[k], ox, oy, dx, dy, md)
-        res = np.frombuffer(array("d", flat)).reshape(n, 5)
+        if views is None:
+            views = self._views[n] = (o32[:n], d32[:n])
+        prim = self._scene.run(views[0], views[1], query="INTERSECT")
+        if type(max_dist) is float or type(max_dist) is np.float64 or type(max_dist) is int:
+            md, limits = float(max_dist), NO_LIMITS
+        else:
+            md, limits = 0.0, np.broadcast_to(np.asarray(max_dist, dtype=np.float64), (n,))
+        res = np.empty((n, 5))
+        refine_hits(self._table, prim, o, d, md, limits, res)
         return res[:, 0], res[:, 1:3], res[:, 3:5]
 
     def _refine(self, o, d, max_dist, prim):

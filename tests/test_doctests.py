@@ -12,6 +12,7 @@ MODULES = [
     "slicer.degenerate",
     "slicer.section",
     "slicer.embree_contact",
+    "slicer.refine",
     "slicer.exact",
     "slicer.slices",
     "slicer.agreement",

@@ -17,6 +17,8 @@ and when the tip passes ``leave_at``, the other end of the designated area
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from core2d.readings import TIP
@@ -33,14 +35,26 @@ def _settle(probe, joint, theta, rot_dir):
     Returns ``(status, theta, contact)`` with status ``"ok"``, ``"lost"``
     (swung MAX_SETTLE without touching) or ``"jammed"`` (no free angle
     within _MAX_YIELD against the torque).
+
+    One batch holds the ray at ``theta`` and the first search window on
+    both sides (with the torque, and against it): which of the two is
+    needed depends on that first ray, and a window of 8 rays costs Embree
+    less than a call.
     """
-    d0, _ = probe._fan(joint, [theta])
-    if not np.isfinite(d0[0]):
-        found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True)
+    along, back = probe._offsets_head(MAX_SETTLE), probe._offsets_head(_MAX_YIELD)
+    angles = np.empty(1 + len(along) + len(back))
+    angles[0] = theta
+    angles[1:1 + len(along)] = theta + rot_dir * along
+    angles[1 + len(along):] = theta + -rot_dir * back
+    d, p = probe._fan(joint, angles)
+    if d[0] == np.inf:
+        first = (d[1:1 + len(along)], p[1:1 + len(along)])
+        found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True, first=first)
         if found is None:
             return "lost", theta + rot_dir * MAX_SETTLE, None
     else:
-        found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False)
+        first = (d[1 + len(along):], p[1 + len(along):])
+        found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False, first=first)
         if found is None:
             return "jammed", theta, None
     free, (d, p) = found
@@ -53,7 +67,7 @@ def _segment_distance(point, a, b) -> float:
     abx, aby = float(b[0]) - ax, float(b[1]) - ay
     den = abx * abx + aby * aby
     s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
-    return float(np.hypot(ax + s * abx - px, ay + s * aby - py))
+    return math.hypot(ax + s * abx - px, ay + s * aby - py)
 
 
 def _passes(probe, point, p, q, joint, point_joint=None) -> bool:
@@ -66,7 +80,6 @@ def _passes(probe, point, p, q, joint, point_joint=None) -> bool:
     material (the other face of a feature thinner than eps), not on the
     tip's path.
     """
-    point = np.asarray(point, float)
     d = _segment_distance(point, p, q)
     if d <= 2 * probe.tol:
         return True
@@ -74,9 +87,10 @@ def _passes(probe, point, p, q, joint, point_joint=None) -> bool:
         return False
     if point_joint is None:
         return True
-    e = q - p
-    ours = e[0] * (joint[1] - p[1]) - e[1] * (joint[0] - p[0])
-    theirs = e[0] * (point_joint[1] - p[1]) - e[1] * (point_joint[0] - p[0])
+    px, py = float(p[0]), float(p[1])
+    ex, ey = float(q[0]) - px, float(q[1]) - py
+    ours = ex * (float(joint[1]) - py) - ey * (float(joint[0]) - px)
+    theirs = ex * (float(point_joint[1]) - py) - ey * (float(point_joint[0]) - px)
     return ours * theirs > 0
 
 
@@ -105,25 +119,33 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     """
     probe._motion()
     v = np.asarray(v, float) / np.linalg.norm(v)
+    vx, vy = float(v[0]), float(v[1])
     rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
     delta0 = probe.eps / 4 if delta is None else float(delta)
     dmin = probe.tol / 2
     jump = probe.eps / 2
+    near = 2 * probe.tol
+    L = probe.length
     step = delta0
     travelled = 0.0
+    stop = None if stop_at is None else np.asarray(stop_at, float)
+    leave = None if leave_at is None else np.asarray(leave_at, float)
     first = probe.sense()
     last = first.tip_contact
     trace = [last.point] if last is not None else []
-    before = (probe.joint.copy(), probe.direction.copy())
+    leave_far = leave is not None and last is not None and float(
+        np.linalg.norm(trace[0] - leave)) > probe.tip_zone
+    before = (probe.joint.copy(), probe.direction)
     event, primary = "limit", None
     prev_disp = None
     for _ in range(max_steps):
-        t = probe.direction
-        if stop_at is not None and _segment_distance(
-                np.asarray(stop_at, float), probe.joint, probe.tip) <= 2 * probe.tol:
-            event = "reached-body"  # a part of the probe other than the tip
-            break
-        if v @ t > 0:
+        c, s = math.cos(probe.theta), math.sin(probe.theta)
+        if stop is not None:
+            jx, jy = float(probe.joint[0]), float(probe.joint[1])
+            if _segment_distance(stop, (jx, jy), (jx + L * c, jy + L * s)) <= near:
+                event = "reached-body"  # a part of the probe other than the tip
+                break
+        if vx * c + vy * s > 0:
             if guard_push:  # Case 3: the guard intercepts a pushing step
                 probe.stats.push_attempts += 1
                 event = "pushing"
@@ -136,7 +158,11 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         joint = probe.joint + h * v
         status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
         sliding = status == "ok" and contact.face == TIP and last is not None
-        disp = float(np.linalg.norm(contact.point - last.point)) if sliding else np.inf
+        if sliding:
+            q, o = contact.point, last.point
+            disp = math.hypot(float(q[0]) - float(o[0]), float(q[1]) - float(o[1]))
+        else:
+            disp = math.inf
         continuous = disp <= jump
         if not continuous:
             # A jump keeps a finite gap as the step shrinks; a fast continuous
@@ -150,7 +176,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         if status == "jammed":
             event = "blocked"
             break
-        before = (probe.joint.copy(), probe.direction.copy())
+        before = (probe.joint, np.array((c, s)))
         probe.stats.joint_path += h
         travelled += h
         probe.joint, probe.theta = joint, theta
@@ -160,21 +186,19 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         if not continuous:
             event, primary = "jump", contact
             break
-        if stop_at is not None and last is not None and _passes(
-                probe, stop_at, last.point, contact.point, joint, stop_joint):
-            trace.append(np.asarray(stop_at, float))
+        if stop is not None and last is not None and _passes(
+                probe, stop, last.point, contact.point, joint, stop_joint):
+            trace.append(stop)
             event = "reached"  # the tip passed P_fin during this step
             break
-        if leave_at is not None and last is not None and np.linalg.norm(
-                trace[0] - leave_at) > probe.tip_zone and _passes(
-                probe, leave_at, last.point, contact.point, joint, leave_joint):
-            trace.append(np.asarray(leave_at, float))
+        if leave_far and _passes(probe, leave, last.point, contact.point, joint, leave_joint):
+            trace.append(leave)
             event = "left"  # the tip passed the other end of the area
             break
         last = contact
         trace.append(contact.point)
         step = min(delta0, 2 * step)
-    kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0],
+    kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
               before_direction=before[1])
     if primary is not None:
         kw["primary"] = primary

@@ -11,6 +11,7 @@ trace steps that were executed in sliding contact with v.t > 0.
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -23,7 +24,7 @@ __all__ = ["Probe", "unit", "angle_of"]
 
 _WINDOWS = (8, 32, 128, 512, 2048, 8192)
 _REFINE = 16
-
+_STEPS = np.arange(_REFINE + 2, dtype=np.float64)[1:-1]  # np.linspace's steps 1 .. _REFINE
 
 
 class Probe:
@@ -66,11 +67,14 @@ class Probe:
     # ------------------------------------------------------------------ state
     @property
     def direction(self) -> np.ndarray:
-        return unit(self.theta)
+        """(2,) float: unit probe direction t."""
+        return np.array((math.cos(self.theta), math.sin(self.theta)))
 
     @property
     def tip(self) -> np.ndarray:
-        return self.joint + self.length * self.direction
+        """(2,) float: tip position, joint + L t."""
+        th, L = self.theta, self.length
+        return np.array((self.joint[0] + L * math.cos(th), self.joint[1] + L * math.sin(th)))
 
     def _cast(self, origins, dirs, max_dist):
         t0 = time.perf_counter()
@@ -82,9 +86,10 @@ class Probe:
 
     def _fan(self, joint, angles):
         """Rays from ``joint`` at ``angles`` over the probe length."""
-        angles = np.asarray(angles, dtype=np.float64)
-        origins = np.broadcast_to(joint, (len(angles), 2))
-        return self._cast(origins, unit(angles), self.length)
+        dirs = unit(angles).reshape(-1, 2)
+        origins = np.empty_like(dirs)
+        origins[:] = joint
+        return self._cast(origins, dirs, self.length)
 
     # --------------------------------------------------------------- sensing
     def sense(self, event="done", **extra) -> Reading:
@@ -107,12 +112,16 @@ class Probe:
         on the probe itself (distance <= L) block.
         """
         alpha = self.tol / self.length
-        t = self.direction
-        L = self.length
-        origins = np.stack([self.joint, self.joint, self.tip])
-        dirs = np.stack([unit(self.theta + alpha), unit(self.theta - alpha), t])
-        d, p = self._cast(origins, dirs, np.array([L + self.tol, L + self.tol, self.tol]))
-        tip_touch = bool(np.isfinite(d[2]))
+        th, L, tol = self.theta, self.length, self.tol
+        c, sn = math.cos(th), math.sin(th)
+        jx, jy = float(self.joint[0]), float(self.joint[1])
+        origins = np.array(((jx, jy), (jx, jy), (jx + L * c, jy + L * sn)))
+        dirs = np.array(((math.cos(th + alpha), math.sin(th + alpha)),
+                         (math.cos(th - alpha), math.sin(th - alpha)), (c, sn)))
+        d, p = self._cast(origins, dirs, np.array((L + tol, L + tol, tol)))
+        t = dirs[2].copy()
+        d = d.tolist()
+        tip_touch = d[2] < math.inf
         reach = L + (d[2] - 1e-3 * self.tol if tip_touch else 0.0)
         contacts = []
         if tip_touch:
@@ -120,8 +129,8 @@ class Probe:
         for k, face in ((0, RIGHT), (1, LEFT)):
             if d[k] <= L:
                 f = TIP if L - d[k] <= self.tip_zone else face
-                if not any(np.linalg.norm(c.point - p[k]) <= self.tip_zone for c in contacts):
-                    contacts.append(Contact(p[k], f, float(d[k])))
+                if not any(np.linalg.norm(q.point - p[k]) <= self.tip_zone for q in contacts):
+                    contacts.append(Contact(p[k], f, d[k]))
         primary = extra.pop("primary", None)
         if primary is not None:
             contacts = [primary] + [
@@ -131,8 +140,8 @@ class Probe:
             joint=self.joint.copy(),
             direction=t,
             contacts=tuple(contacts),
-            blocked_ccw=bool(d[0] <= reach),
-            blocked_cw=bool(d[1] <= reach),
+            blocked_ccw=d[0] <= reach,
+            blocked_cw=d[1] <= reach,
             event=event,
             **extra,
         )
@@ -161,6 +170,14 @@ class Probe:
             yield ks
             pos = float(ks[-1])
 
+    def _offsets_head(self, max_angle):
+        """The first window of :meth:`_offsets` (its rays go in a caller's batch)."""
+        key = float(max_angle)
+        head = self._offset_cache.get(key)
+        if head is None:
+            head = self._offset_cache[key] = self._make_offsets(key)
+        return head[0] if head else np.zeros(0)
+
     def _make_offsets(self, max_angle):
         out, pos, step = [], 0.0, min(self.fan_step, 2 * self.ang_tol)
         while step < self.fan_step and pos < max_angle:
@@ -175,21 +192,23 @@ class Probe:
             pos = ks[-1]
         return [np.minimum(w, max_angle) for w in out]
 
-    def _search(self, joint, theta0, rot_dir, max_angle, want_blocked=True):
+    def _search(self, joint, theta0, rot_dir, max_angle, want_blocked=True, first=None):
         """First angle from ``theta0`` (excluded) towards ``rot_dir`` where the
         probe on ``joint`` becomes blocked (or free), resolved to ang_tol.
+        ``first`` is the ``(dist, point)`` answer for the rays of the first
+        window when the caller cast them already (in a batch with others).
 
         Returns ``(free_angle, (dist, point))`` -- the free side of the
         bracket and the hit of its blocked side -- or None when nothing
         changes within ``max_angle``.
         """
         prev = 0.0
-        for offs in self._offsets(max_angle):
+        for k, offs in enumerate(self._offsets(max_angle)):
             ang = theta0 + rot_dir * offs
-            d, p = self._fan(joint, ang)
-            hit = np.isfinite(d) if want_blocked else ~np.isfinite(d)
-            if hit.any():
-                i = int(np.argmax(hit))
+            d, p = first if k == 0 and first is not None else self._fan(joint, ang)
+            hit = d < math.inf if want_blocked else d == math.inf
+            i = int(hit.argmax())
+            if hit[i]:
                 lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
                 return self._refine(joint, lo, ang[i], (d[i], p[i]), want_blocked)
             prev = offs[-1]
@@ -200,11 +219,12 @@ class Probe:
         blocked_hit = hit_after if want_blocked else None
         last_blocked = hit_after if want_blocked else None
         while abs(a_after - a_before) > self.ang_tol:
-            ang = np.linspace(a_before, a_after, _REFINE + 2)[1:-1]
+            # np.linspace(a_before, a_after, _REFINE + 2)[1:-1], without its overhead
+            ang = _STEPS * ((a_after - a_before) / (_REFINE + 1)) + a_before
             d, p = self._fan(joint, ang)
-            hit = np.isfinite(d) if want_blocked else ~np.isfinite(d)
-            if hit.any():
-                i = int(np.argmax(hit))
+            hit = d < math.inf if want_blocked else d == math.inf
+            i = int(hit.argmax())
+            if hit[i]:
                 a_after = ang[i]
                 a_before = ang[i - 1] if i > 0 else a_before
                 if want_blocked:

@@ -1,0 +1,223 @@
+"""Sensing speed per slice: this checkout against an earlier commit and against raw Embree.
+
+For every built-in scene (``--slices`` z-slices, eps = diagonal / 200, the
+Embree backend) it prints, measured in one run:
+
+* ``before s`` / ``after s`` -- CPU seconds of ``core2d.sense_slice`` per
+  slice for the commit ``--before`` (default ``c95dda6``, exported with
+  ``git archive`` into a temporary directory) and for this checkout, each
+  scene's runs alternating before / after ``--repeat`` times (median);
+* ``speed-up`` -- before / after;
+* ``raw s`` and ``x raw`` -- the time embreex alone needs for the same rays
+  in the same calls (every batch this checkout cast, replayed on the same
+  scene), and after / raw;
+* ``rays``, ``casts``, ``motions`` per slice (before -> after when they differ);
+* ``same`` -- whether both commits give the same result, per slice: ``=``
+  identical geometry; else the share of contour samples (every eps/4)
+  whose class differs (W1 within eps/2 of a traced polyline, W2 within
+  eps/2 of or behind a chord, W3 behind a lid, or none), and the coverage,
+  precision and W3-soundness of both;
+* ``peak MiB`` -- peak resident memory of the process that sensed the slices
+  (after), and what it held before sensing (imports, mesh, slices).
+
+``--tols`` adds a table of peak memory and time against the contact
+resolution (tol = eps x share), which the windows of the simulator keep
+bounded. Times are CPU seconds: the machine may be shared; compare the
+ratios, which are measured side by side.
+
+    python -m bench.bench_sensing [--slices 4] [--repeat 1] [--scenes a,b] [--before REV]
+                                  [--no-before] [--tols 0.05,0.005] [--json out.json]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tarfile
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKER = Path(__file__).resolve().with_name("sensing_worker.py")
+FIGURES = ("fig17_pocket", "fig18_overhangs")
+
+
+def export(rev: str, into: Path) -> Path:
+    """Files of commit ``rev`` of this repository, unpacked under ``into``."""
+    tar = into / "before.tar"
+    with open(tar, "wb") as fh:
+        subprocess.run(["git", "-C", str(ROOT), "archive", rev], stdout=fh, check=True)
+    dest = into / "before"
+    with tarfile.open(tar) as tf:
+        tf.extractall(dest, filter="data")
+    return dest
+
+
+def sense(root: Path, scene: str, slices: int, out: Path, raw=False, tol_share=None) -> dict:
+    """Run the worker for one checkout and scene; its JSON document."""
+    cmd = [sys.executable, str(WORKER), str(root), scene, str(slices), str(out)]
+    cmd += ["--raw"] * raw + (["--tol-share", str(tol_share)] if tol_share else [])
+    subprocess.run(cmd, check=True, cwd=str(root))
+    return json.loads(out.read_text())
+
+
+def _classes(loops, geometry, eps):
+    """Class per contour sample (0 none, 1 W1, 2 W2, 3 W3) and the samples."""
+    import shapely
+
+    from core2d.truth.metrics import lid_arcs
+    from core2d.truth.reachability import sample_contour
+
+    samp = sample_contour(loops, eps / 4)
+    cls = np.zeros(len(samp.points), dtype=np.int8)
+    pts = shapely.points(samp.points)
+    for code, key in ((3, "w3"), (2, "w2"), (1, "w1")):  # W1 over W2 over W3
+        parts = [np.asarray(p, float) for p in geometry[key] if len(p) >= 2]
+        if not parts:
+            continue
+        mask = np.zeros(len(cls), dtype=bool)
+        if code < 3:
+            mask |= shapely.distance(shapely.multilinestrings(parts), pts) <= eps / 2
+        if code > 1:
+            mask |= lid_arcs(loops, parts, samp, resolution=eps / 4)["mask"]
+        cls[mask] = code
+    return cls
+
+
+def _metrics(loops, geometry, eps) -> dict:
+    from core2d.result import SliceResult
+    from core2d.truth.metrics import slice_metrics
+
+    res = SliceResult(**{k: [np.asarray(a, float) for a in v] for k, v in geometry.items()})
+    m = slice_metrics(loops, res, eps)
+    return {k: m[k] for k in ("coverage", "precision", "w3_count", "w3_unsound_count")}
+
+
+def compare(scene: str, before: dict, after: dict, slices: int) -> list[dict]:
+    """Per slice: identical geometry, differing sample classes, metrics of both."""
+    import meshes
+    import slicer
+
+    cuts = [c for c in slicer.slice_mesh(meshes.load(scene), axis="z", count=slices) if c.loops]
+    out = []
+    for cut, b, a in zip(cuts, before["slices"], after["slices"]):
+        loops = [np.asarray(lp) for lp in cut.loops]
+        row = {"identical": b["geometry"] == a["geometry"], "class_diff": 0.0}
+        if not row["identical"]:
+            cb, ca = (_classes(loops, s["geometry"], s["eps"]) for s in (b, a))
+            row["class_diff"] = float(np.mean(cb != ca))
+        row["before"], row["after"] = (_metrics(loops, s["geometry"], s["eps"]) for s in (b, a))
+        out.append(row)
+    return out
+
+
+def _fmt_counts(b, a) -> str:
+    return f"{b:.0f}" if round(b) == round(a) else f"{b:.0f}->{a:.0f}"
+
+
+def _same(rows) -> str:
+    if all(r["identical"] for r in rows):
+        return "="
+    worst = max(r["class_diff"] for r in rows)
+    keys = ("coverage", "precision", "w3_count", "w3_unsound_count")
+    metrics = all(abs(r["before"][k] - r["after"][k]) <= 1e-3 for r in rows for k in keys)
+    return f"{worst:.1%} of samples" + ("" if metrics else " (metrics differ)")
+
+
+def scene_row(scene, runs_b, runs_a, raw, cmp_rows) -> dict:
+    """Summary of one scene (per slice: seconds, counts; whole: ratios)."""
+    n = len(runs_a[0]["slices"])
+    per = lambda doc, key: sum(s[key] for s in doc["slices"]) / max(n, 1)  # noqa: E731
+    after = statistics.median(per(d, "seconds") for d in runs_a)
+    before = statistics.median(per(d, "seconds") for d in runs_b) if runs_b else None
+    return dict(scene=scene, slices=n, before=before, after=after,
+                speedup=before / after if before else None,
+                raw=raw["raw_seconds"] / max(n, 1), rays=per(runs_a[0], "rays"),
+                casts=per(runs_a[0], "casts"), motions=per(runs_a[0], "motions"),
+                rays_before=per(runs_b[0], "rays") if runs_b else None,
+                casts_before=per(runs_b[0], "casts") if runs_b else None,
+                motions_before=per(runs_b[0], "motions") if runs_b else None,
+                peak=max(d["peak_mib"] for d in runs_a), base=max(d["base_mib"] for d in runs_a),
+                same=_same(cmp_rows) if cmp_rows else "", compare=cmp_rows)
+
+
+def print_table(rows) -> None:
+    print(f"{'scene':16s} {'before s':>8s} {'after s':>8s} {'speed-up':>8s} {'raw s':>7s} "
+          f"{'x raw':>6s} {'rays':>15s} {'casts':>12s} {'motions':>10s} {'peak MiB':>13s}  same")
+    for r in rows:
+        b = f"{r['before']:8.3f}" if r["before"] is not None else f"{'-':>8s}"
+        sp = f"{r['speedup']:7.1f}x" if r["speedup"] else f"{'-':>8s}"
+        rays = _fmt_counts(r["rays_before"] or r["rays"], r["rays"])
+        casts = _fmt_counts(r["casts_before"] or r["casts"], r["casts"])
+        mot = _fmt_counts(r["motions_before"] or r["motions"], r["motions"])
+        print(f"{r['scene']:16s} {b} {r['after']:8.3f} {sp} {r['raw']:7.3f} "
+              f"{r['after'] / r['raw']:6.1f} {rays:>15s} {casts:>12s} {mot:>10s} "
+              f"{r['peak']:6.0f} ({r['base']:4.0f})  {r['same']}")
+    sp = [r["speedup"] for r in rows if r["speedup"]]
+    xr = [r["after"] / r["raw"] for r in rows]
+    if sp:
+        print(f"median speed-up {statistics.median(sp):.1f}x (min {min(sp):.1f}x); ", end="")
+    print(f"after / raw embreex: median {statistics.median(xr):.1f}, max {max(xr):.1f}")
+
+
+def tol_table(tmp, scene, slices, shares) -> list[dict]:
+    """Peak memory and time of this checkout against tol = eps x share."""
+    out = []
+    for share in shares:
+        doc = sense(ROOT, scene, slices, tmp / f"tol-{share}.json", tol_share=share)
+        n = len(doc["slices"])
+        out.append(dict(scene=scene, share=share, peak=doc["peak_mib"], base=doc["base_mib"],
+                        seconds=sum(s["seconds"] for s in doc["slices"]) / n,
+                        rays=sum(s["rays"] for s in doc["slices"]) / n))
+    print(f"\n{'scene':16s} {'tol / eps':>9s} {'s/slice':>8s} {'rays/slice':>11s} {'peak MiB':>13s}")
+    for r in out:
+        print(f"{r['scene']:16s} {r['share']:9.4g} {r['seconds']:8.3f} {r['rays']:11.0f} "
+              f"{r['peak']:6.0f} ({r['base']:4.0f})")
+    return out
+
+
+def main(argv=None) -> int:
+    import meshes
+
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--slices", type=int, default=4, help="z-slices per scene (default 4)")
+    p.add_argument("--repeat", type=int, default=1, help="timed runs per side and scene")
+    p.add_argument("--scenes", help="comma-separated scene names (default: all)")
+    p.add_argument("--before", default="c95dda6", help="commit to compare with")
+    p.add_argument("--no-before", dest="with_before", action="store_false")
+    p.add_argument("--tols", help="tol / eps shares for the memory table, e.g. 0.05,0.005")
+    p.add_argument("--tol-scene", default="deep_slot", help="scene of the memory table")
+    p.add_argument("--json", help="write the rows to this file")
+    args = p.parse_args(argv)
+    scenes = args.scenes.split(",") if args.scenes else meshes.names()
+    unknown = sorted(set(scenes) - set(meshes.names()))
+    if unknown or args.slices < 1 or args.repeat < 1:
+        p.error(f"unknown scenes {unknown}" if unknown else "--slices and --repeat must be >= 1")
+    rows, tols = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        old = export(args.before, tmp) if args.with_before else None
+        for scene in scenes:
+            runs_b, runs_a = [], []
+            for k in range(args.repeat):
+                if old is not None:
+                    runs_b.append(sense(old, scene, args.slices, tmp / "b.json"))
+                runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0))
+            cmp_rows = compare(scene, runs_b[0], runs_a[0], args.slices) if runs_b else []
+            rows.append(scene_row(scene, runs_b, runs_a, runs_a[0], cmp_rows))
+            print(f"  {scene}: done", file=sys.stderr, flush=True)
+        print_table(rows)
+        if args.tols:
+            tols = tol_table(tmp, args.tol_scene, args.slices,
+                             [float(x) for x in args.tols.split(",")])
+    if args.json:
+        Path(args.json).write_text(json.dumps({"scenes": rows, "tols": tols}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

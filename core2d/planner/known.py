@@ -89,6 +89,9 @@ class KnownContour:
         self._first = []  # index of each piece's first segment
         self._next = []  # piece i -> [(j, k)]: piece j passes piece i's end at its segment k
         self._ends = np.zeros((0, 2))  # last point of every piece
+        self._starts = np.zeros((0, 2))  # first point of every piece
+        self._lo = np.zeros((0, 2))  # bounding box of every piece: cheap culling
+        self._hi = np.zeros((0, 2))
         self._end_dirs = []  # _end_direction of every piece (computed once)
         self._buf = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=np.int64))
 
@@ -106,18 +109,18 @@ class KnownContour:
         self._first.append(len(self._a))
         # pieces that continue the new one, and old pieces the new one continues
         nxt = []
-        if len(self._a):
-            ok = (_point_segments(pl[-1], self._a, self._b) <= self.join) & _turns(
-                end_dir, self._b - self._a)
-            for j in np.unique(self._piece[ok]):
-                nxt.append((int(j), int(np.argmax(ok[self._first[j]:]))))
+        g = self._near(pl[-1], self.join)
+        if len(g):
+            a, b = self._a[g], self._b[g]
+            ok = (_point_segments(pl[-1], a, b) <= self.join) & _turns(end_dir, b - a)
+            pieces = self._piece[g[ok]]
+            for j in np.unique(pieces):  # its first segment passing the end
+                nxt.append((int(j), int(g[ok][np.argmax(pieces == j)]) - self._first[j]))
         self._next.append(nxt)
-        # only ends within ``join`` of the new piece's bounding box can pass
-        # it (with a margin far above the rounding of the distances below)
+        # only ends within ``join`` of the new piece's bounding box can pass it
         lo, hi = pl.min(axis=0), pl.max(axis=0)
-        reach = self.join + 1e-9 * (self.join + float(np.abs(np.r_[lo, hi]).max()))
-        lo, hi = lo - reach, hi + reach
-        near = np.flatnonzero(((ends >= lo) & (ends <= hi)).all(axis=1))
+        reach = self.join + _margin(self.join, lo, hi)
+        near = np.flatnonzero(((ends >= lo - reach) & (ends <= hi + reach)).all(axis=1))
         for j in near.tolist():
             ok = (_point_segments(ends[j], pl[:-1], pl[1:]) <= self.join) & _turns(
                 self._end_dirs[j], pl[1:] - pl[:-1])
@@ -125,7 +128,22 @@ class KnownContour:
                 self._next[j].append((i, int(np.argmax(ok))))
         self._append(pl, i)
         self._ends = np.concatenate([ends, pl[-1:]])
+        self._starts = np.concatenate([self._starts, pl[:1]])
         self._end_dirs.append(end_dir)
+        self._lo = np.concatenate([self._lo, lo[None]])
+        self._hi = np.concatenate([self._hi, hi[None]])
+
+    def _near(self, p, r) -> np.ndarray:
+        """Indices (ascending) of the segments of every piece whose bounding
+        box lies within ``r`` of point ``p``: no other segment is within ``r``
+        (the margin is far above the rounding of the exact distances)."""
+        if not len(self._lo):
+            return np.zeros(0, dtype=np.int64)
+        r = r + _margin(r, p, p)
+        ok = ((self._lo - r <= p) & (self._hi + r >= p)).all(axis=1)
+        if ok.all():
+            return np.arange(len(self._a))
+        return np.flatnonzero(ok[self._piece])
 
     def _append(self, pl, i) -> None:
         """Append the segments of piece ``i`` (amortised: buffers grow 2x)."""
@@ -143,8 +161,14 @@ class KnownContour:
     def with_pieces(self, pieces) -> "KnownContour":
         """A copy of the map with ``pieces`` (each (k, 2) float) recorded too."""
         out = KnownContour(self.join)
-        for pl, (p0, p1) in zip(self.pieces, self.poses):
-            out.add(pl, p0, p1)
+        out.pieces, out.poses, out._first = list(self.pieces), list(self.poses), list(self._first)
+        out._next = [list(nxt) for nxt in self._next]  # the same as adding them again
+        out._end_dirs = list(self._end_dirs)
+        for name in ("_ends", "_starts", "_lo", "_hi"):
+            setattr(out, name, getattr(self, name).copy())
+        n = len(self._a)
+        out._buf = tuple(x[:n].copy() for x in (self._a, self._b, self._piece))
+        out._a, out._b, out._piece = out._buf
         for pl in pieces:
             out.add(pl)
         return out
@@ -161,9 +185,9 @@ class KnownContour:
         for i, pl in enumerate(self.pieces):
             if not self._next[i]:
                 ends.append((pl[-1], self.poses[i][1], i))
-            d = _point_segments(pl[0], self._a, self._b)
-            d[self._piece == i] = np.inf
-            if not (d <= self.join).any():
+            g = self._near(pl[0], self.join)
+            g = g[self._piece[g] != i]
+            if not (_point_segments(pl[0], self._a[g], self._b[g]) <= self.join).any():
                 starts.append((pl[0], self.poses[i][0], i))
         return ends, starts
 
@@ -175,7 +199,11 @@ class KnownContour:
         """Distance from ``point`` (2,) to the recorded contour (inf if none)."""
         if len(self._a) == 0:
             return float("inf")
-        return float(_point_segments(np.asarray(point, float), self._a, self._b).min())
+        p = np.asarray(point, float)
+        # the nearest piece start bounds the answer; only boxes within it count
+        bound = float(np.hypot(*(self._starts - p).T).min())
+        g = self._near(p, bound)
+        return float(_point_segments(p, self._a[g], self._b[g]).min())
 
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
@@ -208,17 +236,18 @@ class KnownContour:
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
-        near_a = _point_segments(pa, self._a, self._b) <= tol
-        near_b = _point_segments(pb, self._a, self._b) <= tol
-        if not near_a.any() or not near_b.any():
+        ga, gb = self._near(pa, tol), self._near(pb, tol)
+        near_a = ga[_point_segments(pa, self._a[ga], self._b[ga]) <= tol]
+        near_b = gb[_point_segments(pb, self._a[gb], self._b[gb]) <= tol]
+        if not len(near_a) or not len(near_b):
             return None
         first = np.asarray(self._first)
-        pos_b = np.arange(len(self._a)) + _param(pb, self._a, self._b)  # position along pieces
+        pos_b = near_b + _param(pb, self._a[near_b], self._b[near_b])  # position along pieces
         best_b = np.full(len(self.pieces), -np.inf)  # farthest position near B, per piece
-        np.maximum.at(best_b, self._piece[near_b], pos_b[near_b])
+        np.maximum.at(best_b, self._piece[near_b], pos_b)
         reached, came = {}, {}  # piece -> earliest position reached, and from which piece
         todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]),
-                 None) for g in np.flatnonzero(near_a)]
+                 None) for g in near_a]
         skip = set(exclude)
         while todo:
             i, pos, prev = todo.pop()
@@ -278,6 +307,12 @@ class KnownContour:
             toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid
             out.append(FreeLine(p, toward, float(w), float(f)))
         return out
+
+
+def _margin(r, lo, hi) -> float:
+    """Slack for box culling at distance ``r``: far above the rounding of the
+    distances computed near coordinates up to ``lo``, ``hi``."""
+    return 1e-9 * (r + float(np.abs(np.r_[lo, hi]).max()))
 
 
 def _end_direction(pl, span) -> np.ndarray:

@@ -13,6 +13,7 @@
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,12 @@ from core2d.planner.regions import G_region, V_polygon, common_point, cross, in_
 __all__ = ["initial_pass", "bisection", "definition5", "LocalResult"]
 
 
+@functools.lru_cache(maxsize=16)
+def _circle(cx, cy, radius):
+    """The workspace circle as a shapely ring (built once per circle: immutable)."""
+    return Point(cx, cy).buffer(radius, 256).exterior
+
+
 def _start_point(probe, G, a, b):
     """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the longest piece
     of the workspace circle inside G_i cap V_i; when the circle barely
@@ -34,7 +41,7 @@ def _start_point(probe, G, a, b):
     GV = polygonal(G.intersection(V_polygon(a, b, probe.radius + probe.length)))
     if GV.is_empty or GV.area <= 0:
         return None, GV
-    ring = Point(*probe.center).buffer(probe.radius, 256).exterior
+    ring = _circle(float(probe.center[0]), float(probe.center[1]), probe.radius)
     arc = ring.intersection(GV)
     if not arc.is_empty and arc.length > probe.tol:
         line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
@@ -117,13 +124,15 @@ def _crosses(p, tips, a, b) -> np.ndarray:
 def _tip_bound(probe, G, a, b, theta, rot_dir, limit, chunk=4096):
     """Theorem 3: largest swing (<= limit) keeping the tip inside
     T_i^(j) cap V_i cap G_i, or beyond it only across L_{A_i}^{B_i}
-    (checked on the swept arc at the fan spacing, ``chunk`` tips at a time;
-    G is G_i buffered by tol)."""
+    (checked on the swept arc at the fan spacing, in chunks of 64 tips
+    growing 4x up to ``chunk``: the first bad tip is usually near; G is G_i
+    buffered by tol)."""
     if limit <= 0:
         return 0.0
     n = max(4, int(limit / probe.fan_step))
-    for lo in range(0, n, chunk):
-        k = np.arange(lo + 1, min(n, lo + chunk) + 1)
+    lo, size = 0, min(64, chunk)
+    while lo < n:
+        k = np.arange(lo + 1, min(n, lo + size) + 1)
         angs = theta + rot_dir * limit * k / n
         tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
         free_side = in_V(tips, a, b)
@@ -132,6 +141,7 @@ def _tip_bound(probe, G, a, b, theta, rot_dir, limit, chunk=4096):
         bad = ~((free_side & inside) | (~free_side & through_lid))
         if bad.any():
             return float(limit * (lo + int(np.argmax(bad))) / n)
+        lo, size = lo + size, min(4 * size, chunk)
     return limit
 
 

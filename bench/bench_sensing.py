@@ -12,7 +12,9 @@ Embree backend) it prints, measured in one run:
   in the same calls (every batch this checkout cast, replayed on the same
   scene), and after / raw;
 * ``rays``, ``casts``, ``motions`` per slice (before -> after when they differ);
-* ``same`` -- whether both commits give the same result, per slice: ``=``
+* ``same`` -- whether this checkout gives the same result as the commit
+  ``--reference`` (default: ``--before``; give the last commit that changed
+  the planner's rules when it came after ``--before``), per slice: ``=``
   identical geometry; else the share of contour samples (every eps/4)
   whose class differs (W1 within eps/2 of a traced polyline, W2 within
   eps/2 of or behind a chord, W3 behind a lid, or none), and the coverage,
@@ -26,7 +28,8 @@ bounded. Times are CPU seconds: the machine may be shared; compare the
 ratios, which are measured side by side.
 
     python -m bench.bench_sensing [--slices 4] [--repeat 1] [--scenes a,b] [--before REV]
-                                  [--no-before] [--tols 0.05,0.005] [--json out.json]
+                                  [--reference REV] [--no-before] [--tols 0.05,0.005]
+                                  [--json out.json]
 """
 from __future__ import annotations
 
@@ -81,7 +84,7 @@ def _classes(loops, geometry, eps):
             continue
         mask = np.zeros(len(cls), dtype=bool)
         if code < 3:
-            mask |= shapely.distance(shapely.multilinestrings(parts), pts) <= eps / 2
+            mask |= shapely.distance(shapely.MultiLineString(parts), pts) <= eps / 2
         if code > 1:
             mask |= lid_arcs(loops, parts, samp, resolution=eps / 4)["mask"]
         cls[mask] = code
@@ -188,6 +191,8 @@ def main(argv=None) -> int:
     p.add_argument("--repeat", type=int, default=1, help="timed runs per side and scene")
     p.add_argument("--scenes", help="comma-separated scene names (default: all)")
     p.add_argument("--before", default="c95dda6", help="commit to compare with")
+    p.add_argument("--reference", help="commit whose results must be reproduced "
+                   "(default: --before)")
     p.add_argument("--no-before", dest="with_before", action="store_false")
     p.add_argument("--tols", help="tol / eps shares for the memory table, e.g. 0.05,0.005")
     p.add_argument("--tol-scene", default="deep_slot", help="scene of the memory table")
@@ -201,13 +206,19 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         old = export(args.before, tmp) if args.with_before else None
+        ref = old
+        if args.reference and args.with_before:
+            (tmp / "ref").mkdir()
+            ref = export(args.reference, tmp / "ref")
         for scene in scenes:
             runs_b, runs_a = [], []
             for k in range(args.repeat):
                 if old is not None:
                     runs_b.append(sense(old, scene, args.slices, tmp / "b.json"))
                 runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0))
-            cmp_rows = compare(scene, runs_b[0], runs_a[0], args.slices) if runs_b else []
+            doc_ref = runs_b[0] if ref is old or not runs_b else sense(
+                ref, scene, args.slices, tmp / "r.json")
+            cmp_rows = compare(scene, doc_ref, runs_a[0], args.slices) if runs_b else []
             rows.append(scene_row(scene, runs_b, runs_a, runs_a[0], cmp_rows))
             print(f"  {scene}: done", file=sys.stderr, flush=True)
         print_table(rows)

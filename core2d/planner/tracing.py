@@ -84,14 +84,12 @@ def trace_side(probe, area, G, joint_i, local, toward_B, budget):
     p_fin = area.a if fin_is_A else area.b
     pose_fin = area.pose_a if fin_is_A else area.pose_b
     p_other = area.b if fin_is_A else area.a
-    pose_other = area.pose_b if fin_is_A else area.pose_a
     polylines, new, cases, poses = [], [], [], []
     depth = area.depth + 1
     pieces = [local.point[None]]
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     while budget():
-        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other,
-                        stop_joint=pose_fin.joint, leave_joint=pose_other.joint)
+        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other)
         if len(r.trace):
             pieces.append(r.trace)
         p1 = pieces[-1][-1]

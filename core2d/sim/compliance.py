@@ -70,33 +70,17 @@ def _segment_distance(point, a, b) -> float:
     return math.hypot(ax + s * abx - px, ay + s * aby - py)
 
 
-def _passes(probe, point, p, q, joint, point_joint=None) -> bool:
+def _passes(probe, point, p, q) -> bool:
     """Did the tip, stepping from contact p to contact q, pass ``point``?
 
-    Within 2 tol of the step; or within eps/2 -- the paper's resolution: a
-    step's chord cuts a convex corner -- when the posture that touched
-    ``point`` (its joint ``point_joint``) came from the same side of the
-    step as the probe now. A point touched from the other side lies across
-    material (the other face of a feature thinner than eps), not on the
-    tip's path.
+    Within eps/2 of the step (the tip zone): the paper's resolution -- a
+    step's chord cuts a convex corner.
     """
-    d = _segment_distance(point, p, q)
-    if d <= 2 * probe.tol:
-        return True
-    if d > probe.tip_zone:
-        return False
-    if point_joint is None:
-        return True
-    px, py = float(p[0]), float(p[1])
-    ex, ey = float(q[0]) - px, float(q[1]) - py
-    ours = ex * (float(joint[1]) - py) - ey * (float(joint[0]) - px)
-    theirs = ex * (float(point_joint[1]) - py) - ey * (float(point_joint[0]) - px)
-    return ours * theirs > 0
+    return _segment_distance(point, p, q) <= probe.tip_zone
 
 
 def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
-                    guard_push=True, max_steps=20000, leave_at=None, stop_joint=None,
-                    leave_joint=None):
+                    guard_push=True, max_steps=20000, leave_at=None):
     """Trace with the tip from the current contact; see the module doc.
 
     Parameters
@@ -110,8 +94,6 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     guard_push : bool -- stop as soon as v.t > 0 (Case 3).
     leave_at : (2,) float, optional -- the other end of the designated area;
         the tip passing it means the trace left the area (event ``"left"``).
-    stop_joint, leave_joint : (2,) float, optional -- joints of the postures
-        that touched ``stop_at`` and ``leave_at`` (see :func:`_passes`).
 
     Returns
     -------
@@ -187,11 +169,11 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             event, primary = "jump", contact
             break
         if stop is not None and last is not None and _passes(
-                probe, stop, last.point, contact.point, joint, stop_joint):
+                probe, stop, last.point, contact.point):
             trace.append(stop)
             event = "reached"  # the tip passed P_fin during this step
             break
-        if leave_far and _passes(probe, leave, last.point, contact.point, joint, leave_joint):
+        if leave_far and _passes(probe, leave, last.point, contact.point):
             trace.append(leave)
             event = "left"  # the tip passed the other end of the area
             break

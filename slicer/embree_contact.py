@@ -243,8 +243,11 @@ class EmbreeContact:
         if views is None:
             views = self._views[n] = (o32[:n], d32[:n])
         prim = self._scene.run(views[0], views[1], query="INTERSECT")
-        if type(max_dist) is float or type(max_dist) is np.float64 or type(max_dist) is int:
+        kind = type(max_dist)
+        if kind is float or kind is np.float64 or kind is int:
             md, limits = float(max_dist), NO_LIMITS
+        elif kind is np.ndarray and max_dist.shape == (n,) and max_dist.dtype == np.float64:
+            md, limits = 0.0, max_dist  # per-ray limits as given (no broadcast_to: ~5 us)
         else:
             md, limits = 0.0, np.broadcast_to(np.asarray(max_dist, dtype=np.float64), (n,))
         res = np.empty((n, 5))

@@ -312,7 +312,8 @@ class KnownContour:
 def _margin(r, lo, hi) -> float:
     """Slack for box culling at distance ``r``: far above the rounding of the
     distances computed near coordinates up to ``lo``, ``hi``."""
-    return 1e-9 * (r + float(np.abs(np.r_[lo, hi]).max()))
+    return 1e-9 * (r + max(abs(float(lo[0])), abs(float(lo[1])), abs(float(hi[0])),
+                           abs(float(hi[1]))))
 
 
 def _end_direction(pl, span) -> np.ndarray:

@@ -216,9 +216,11 @@ def main(argv=None) -> int:
                 if old is not None:
                     runs_b.append(sense(old, scene, args.slices, tmp / "b.json"))
                 runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0))
-            doc_ref = runs_b[0] if ref is old or not runs_b else sense(
-                ref, scene, args.slices, tmp / "r.json")
-            cmp_rows = compare(scene, doc_ref, runs_a[0], args.slices) if runs_b else []
+            cmp_rows = []
+            if runs_b:
+                doc_ref = runs_b[0] if ref is old else sense(ref, scene, args.slices,
+                                                             tmp / "r.json")
+                cmp_rows = compare(scene, doc_ref, runs_a[0], args.slices)
             rows.append(scene_row(scene, runs_b, runs_a, runs_a[0], cmp_rows))
             print(f"  {scene}: done", file=sys.stderr, flush=True)
         print_table(rows)

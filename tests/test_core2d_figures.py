@@ -20,7 +20,7 @@ from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.planner.regions import (G_region, Posture, T_contains, common_point, contains, in_V, sgn,
                             trace_direction)
 from core2d.planner.revisit import MAX_SWEEP, MAX_TRIES, revisit
-from core2d.planner.tracing import is_internal, plan_sides, split_contact
+from core2d.planner.tracing import is_internal, plan_sides
 from figure_scenes import (DOWN, FIG9, FIG9_A, FIG9_B, FIG9_DIR_B, FIG9_EXT, FIG9_H, GRAZE_AWAY,
                            GRAZE_DIR,
                            LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, V_CORNER, V_POCKET, block,
@@ -106,29 +106,6 @@ def test_theorem4_cases_A_to_E(Y1, Y2, faces, sides, q_face):
     assert (q is None) if q_face is None else (q.face == q_face)
     for toward_B in got:  # K2 <=> sgn(v, t*) < 0 <=> P_fin = B
         assert (sgn(trace_direction(DOWN, toward_B)[0], DOWN) < 0) == toward_B
-
-
-@pytest.mark.parametrize("lip, splits", [
-    ((40.0, 55.0), True),   # over the chord, inside G_i: Int
-    ((40.0, 10.0), True),   # under the chord, inside T_i and out of V_i: Int
-    ((5.0, 55.0), False),   # beside the area, out of G_i and T_i: Ext
-    ((90.0, 20.0), False),  # past B_i, under the chord but out of T_i: Ext
-])
-def test_fig12c_splits_only_at_a_Q_on_Int(lip, splits):
-    """Fig. 12(c) / Fig. 13: a one-sided start (Theorem 4 (D)) splits A_iB_i
-    at the side contact Q only when Q is on Int(A_iB_i); a Q on Ext (contour
-    outside the area, e.g. another island under the probe's side) must not
-    become an end of an unknown area."""
-    a, b = np.array([10.0, 30.0]), np.array([70.0, 30.0])
-    area = Area(a, b, Posture(np.array([10.0, 350.0]), DOWN), Posture(np.array([70.0, 350.0]), DOWN))
-    G = G_region(area.a, area.b, area.pose_a, area.pose_b)
-    joint_i = np.array([40.0, 350.0])
-    contacts = (Contact(np.array([40.0, 30.0]), TIP, 320.0), Contact(np.array(lip), LEFT, 290.0))
-    local = LocalResult(Reading(joint_i, DOWN, contacts), contacts[0].point, 2, 0, 1)
-    sides, q = plan_sides(local)
-    assert sides == [True] and q.face == LEFT  # (D): Q proposed by Theorem 4
-    got = split_contact(q, area, G, joint_i)
-    assert (got is q) if splits else (got is None)
 
 
 # --------------------------------------------------- registration rule §4.3.3

@@ -56,7 +56,8 @@ def summary_lines(result, files=()) -> list[str]:
     else:
         lines.append("  3D  no surface: " + ("; ".join(ev.get("notes", [])) or "nothing sensed"))
     lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
-                 f"{t.get('pushes', 0)}  budget hits {t.get('budget_hits', 0)}  robot time "
+                 f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
+                 f"{t.get('push_attempts', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
                  f"{format_seconds(t.get('robot_time_s'))} (at {run.config.probe_speed:g} "
                  f"units/s + {run.config.motion_overhead:g} s/motion)")
     several = [s for s in run.slices if s.outer_loops > 1]

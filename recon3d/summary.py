@@ -63,8 +63,8 @@ def summary_lines(result, files=()) -> list[str]:
     several = [s for s in run.slices if s.outer_loops > 1]
     if several:
         lines.append(f"  {len(several)} slices hold several objects (outside the paper's "
-                     f"single-object assumption, §3.2; W3 lids between objects count as "
-                     f"unsound): {_names(run, several)}")
+                     f"single-object assumption, §3.2; the planner probes between them, and a "
+                     f"W3 lid bridging two would count as unsound): {_names(run, several)}")
     noref = [s for s in run.slices if not s.has_reference]
     if noref:
         lines.append(f"  {len(noref)} slices have no closed reference contour (open mesh): "

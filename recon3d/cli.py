@@ -1,4 +1,4 @@
-"""Command line: ``recon3d scenes | run | show | bench``.
+"""Command line: ``recon3d scenes | run | show | batch | bench``.
 
 Every user error ends with one line on stderr and exit status 2; no
 traceback. Python warnings print as one line (``recon3d: warning: ...``),
@@ -83,6 +83,9 @@ def build_parser() -> argparse.ArgumentParser:
     from recon3d.run_cmd import add_run_parser
 
     add_run_parser(sub)
+    from recon3d.batch_cmd import add_batch_parser
+
+    add_batch_parser(sub)
     p = sub.add_parser("show", help="open a run's scene in an interactive pyvista window",
                        description="Open DIR/scene.vtm (written by 'recon3d run') in an "
                        "interactive window with the two coverage panels; needs a display.")

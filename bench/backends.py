@@ -77,6 +77,7 @@ def compare_slice(task: dict) -> list[dict]:
         st = res.stats
         rows.append({"case": task["case"], "backend": b, "eps": eps, "motions": st.motions,
                      "casts": st.casts, "seconds": sec, "s_per_motion": sec / max(st.motions, 1),
+                     "ms_per_motion": 1000 * sec / max(st.motions, 1),
                      "cast_share": st.cast_seconds / sec if sec > 0 else np.nan,
                      "agreement": float(lengths[labels == ref].sum() / lengths.sum()),
                      "budget_hit": st.budget_hit})

@@ -10,8 +10,8 @@ Factors (one task each value, :func:`run_factor`):
   positions (:class:`NoisyContact`), ``fig18_overhangs``;
 * ``resolution`` -- ``bowl`` at 4 tessellations (3D F@1% for pulling);
 * ``rotation x|y|z`` -- ``fig18_overhangs`` rotated about each axis (3D F@1%);
-* ``eps / edge`` -- eps from coarse to below the mesh's mean edge length
-  (``bowl``, 16 segments);
+* ``eps / edge`` -- eps from twice to 1/16 of the mesh's median edge length
+  (``bowl``, 32 segments);
 * ``islands/holes`` -- every slice of ``twin_posts``, ``cup_handle``,
   ``bored_block`` (W3 soundness too);
 * ``mesh defects`` -- a non-watertight ``fig18_overhangs`` (2 % of faces
@@ -73,9 +73,8 @@ def stability_tasks(quick: bool) -> list[dict]:
     for ax in "xyz":
         for a in (0, 30, 90) if quick else (0, 15, 30, 45, 90):
             t.append({"factor": f"rotation {ax}", "value": a})
-    for share in (1 / 25, 1 / 100, 1 / 400) if quick else (1 / 25, 1 / 50, 1 / 100, 1 / 200,
-                                                          1 / 400, 1 / 800):
-        t.append({"factor": "eps / edge", "value": share})
+    for ratio in (2.0, 0.5, 0.125) if quick else (2.0, 1.0, 0.5, 0.25, 0.125, 0.0625):
+        t.append({"factor": "eps / edge", "value": ratio})
     for scene in ("twin_posts", "cup_handle", "bored_block"):
         t.append({"factor": "islands/holes", "value": scene})
     for kind in ("open", "self-intersecting"):
@@ -145,7 +144,7 @@ def _mesh_for(task):
                                                                      mesh.bounds.mean(axis=0)))
         return mesh
     if f == "eps / edge":
-        return meshes.load("bowl", resolution=16)
+        return meshes.load("bowl", resolution=32)
     if f == "islands/holes":
         return meshes.load(v)
     if f == "noise":
@@ -181,8 +180,8 @@ def run_factor(task: dict) -> list[dict]:
     quick, f, v = task["quick"], task["factor"], task["value"]
     mesh = _mesh_for(task)
     diag = diagonal(mesh)
-    eps = diag * (v if f == "eps / edge" else (1 / 50 if quick else 1 / 100))
-    edge = float(mesh.edges_unique_length.mean())
+    edge = float(np.median(mesh.edges_unique_length))
+    eps = v * edge if f == "eps / edge" else diag * (1 / 50 if quick else 1 / 100)
     rows = []
     base = {"factor": f, "value": v, "eps": eps, "edge": edge, "fscore_1": np.nan}
     if f == "mesh defects":

@@ -65,11 +65,6 @@ def _cmd_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_bench(args: argparse.Namespace) -> int:
-    raise UsageError("'recon3d bench' runs from a checkout: python -m bench.bench_recon "
-                     "(see bench/README.md)")
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="recon3d",
@@ -91,8 +86,9 @@ def build_parser() -> argparse.ArgumentParser:
                        "interactive window with the two coverage panels; needs a display.")
     p.add_argument("dir", metavar="DIR", help="output directory of 'recon3d run'")
     p.set_defaults(func=_cmd_show)
-    p = sub.add_parser("bench", help="benchmarks (python -m bench.bench_recon in a checkout)")
-    p.set_defaults(func=_cmd_bench)
+    from recon3d.bench_cmd import add_bench_parser
+
+    add_bench_parser(sub)
     return parser
 
 

@@ -156,6 +156,21 @@ def _print(summary):
                         f"{str(s.get(c, '')):>10}" for c in cols))
 
 
+def markdown(summary) -> str:
+    """The summary as a markdown table (the README's results tables)."""
+    head = ("| group | slices | coverage (min) | slices < 0.99 | precision (min) | W3 lids | unsound "
+            "lids | pushes | push attempts | motions | motions / eps | budget hits |")
+    rows = [head, "|" + "---|" * 12]
+    for s in summary:
+        if "cov_min" not in s:
+            rows.append(f"| {s['group']} | {s['runs']} | crashed | | | | | | | | | |")
+            continue
+        rows.append(f"| {s['group'].replace(':', ' ')} | {s['runs']} | {s['cov_min']:.4f} | {s['cov_lt99']} | "
+                    f"{s['prec_min']:.4f} | {s['lids']} | {s['unsound']} | {s['pushes']} | "
+                    f"{s['attempts']} | {s['motions']} | {s['mot_per_eps']:.2f} | {s['budget']} |")
+    return "\n".join(rows)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--per-kind", type=int, default=8, help="outlines per kind (default 8)")
@@ -167,6 +182,7 @@ def main(argv=None):
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--json", help="write every row to this file")
+    p.add_argument("--markdown", action="store_true", help="print the summary as a markdown table")
     args = p.parse_args(argv)
     from outlines import KINDS
 
@@ -185,7 +201,10 @@ def main(argv=None):
               f"lids {r['w3_count']} unsound {r['w3_unsound_count']} "
               f"hidden/eps {r['w3_hidden_reachable_length'] / r['eps']:.1f} "
               f"budget {r['budget_hit']} motions {r['motions']} loops {r['loops']}")
-    _print(summarise(rows))
+    summary = summarise(rows)
+    _print(summary)
+    if args.markdown:
+        print(markdown(summary))
     print(f"{len(rows)} runs in {time.perf_counter() - t0:.0f} s")
     if args.json:
         Path(args.json).write_text(json.dumps(rows, indent=1, default=float))

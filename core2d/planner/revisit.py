@@ -180,7 +180,7 @@ def revisit_one(run, area):
     Returns a W3 reason when the lid passed its proof or its probing and
     waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
-    if known.covers(area.a, area.b, 2 * probe.tol):
+    if known.covers(area.a, area.b, probe.tip_zone):
         return run.close(area, "traced", "C_A^B traced through other areas")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
@@ -245,7 +245,7 @@ def revisit(run) -> None:
     still = []
     for area, why in run.waiting:
         same_gap = [first + k for k, lid in enumerate(lids) if _same_gap(lid, area, run.eps)]
-        if closes_loop(joint, area, 2 * run.probe.tol, run.eps / 4, same_gap):
+        if closes_loop(joint, area, run.probe.tip_zone, run.eps / 4, same_gap):
             run.close(area, "W3", why)
         else:
             still.append((area, why))

@@ -164,7 +164,7 @@ class _Run:
         probe, eps = self.probe, self.eps
         if area.dist < eps:
             return self.close(area, "W2", "Dist(A,B) < eps")
-        if self.known.covers(area.a, area.b, 2 * probe.tol):
+        if self.known.covers(area.a, area.b, probe.tip_zone):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)
@@ -201,7 +201,7 @@ class _Run:
         Fig. 6(b) met inside a slot narrower than eps, where §3.2 fails) the
         area is deferred: :mod:`core2d.planner.revisit` tries those lines."""
         probe = self.probe
-        if (lid_like(self, area) and closes_loop(self.known, area, 2 * probe.tol, self.eps / 4)
+        if (lid_like(self, area) and closes_loop(self.known, area, probe.tip_zone, self.eps / 4)
                 and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
         return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")

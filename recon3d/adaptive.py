@@ -5,22 +5,27 @@ Model no more than the scene needs. Per family, the candidate planes are the
 subset of the uniform one and spans the same slab):
 
 1. **Start coarse**: ``initial`` planes spread over the candidates (the first
-   and the last among them), sensed at the coarse eps (2 x eps).
+   and the last among them; 3 below 16 candidates, else 5). The middle one
+   is sensed first at the coarse eps (2 x eps); the others at the eps it
+   asks for (step 2), so a scene with narrow features pays one coarse pass,
+   not one per slice.
 2. **Adapt eps to the feature size the slice shows**: the sensed region of a
    slice (:func:`recon3d.closure.slice_region`) is opened and closed with
    discs of dyadic widths w; the smallest w for which the boundary moves by
    more than w / 2 (a part or a pocket narrower than w, deeper than w / 2) is
    the slice's feature width, and a slice whose feature width is at most
-   2 x the coarse eps is sensed again at eps_i = max(w / 4, eps / 2)
-   (snapped to coarse eps / 2^k). Features the coarse pass
-   bridged (narrower than the coarse eps) stay invisible: a slice can only
-   show what it sensed.
+   2 x the coarse eps is sensed again at eps_i = max(w / 4, eps)
+   (snapped to coarse eps / 2^k): never finer than the eps of the uniform
+   run it replaces, so a slice never costs more than a uniform one. Features
+   the coarse pass bridged (narrower than the coarse eps) stay invisible: a
+   slice can only show what it sensed.
 3. **Refine where neighbours differ**: between two neighbouring sensed
    slices whose regions differ by more than ``tol`` (symmetric Hausdorff
    distance of their boundaries, in the shared 2D frame of the family) and
    that have a candidate between them, the middle candidate is added, sensed
-   at the finer of the two neighbours' eps. Repeat until no pair differs or
-   no candidate is left between differing neighbours.
+   at the finer of the two neighbours' eps; a slice sensed coarser than its
+   own feature width asks for is sensed again (step 2). Repeat until no pair
+   differs or no candidate is left between differing neighbours.
 
 Everything is decided from the sensed curves (the robot's own data), never
 from the mesh. The cost of the coarse passes that were sensed again is not
@@ -49,7 +54,7 @@ class AdaptivePlan:
     initial : int -- planes of the coarse start (>= 2).
     tol : float -- neighbours whose regions differ by more than this get a
         slice between them (mesh units).
-    eps : float -- the finest eps of a uniform run; slices use eps / 2 ... 2 x eps.
+    eps : float -- the eps of the uniform run it replaces; slices use eps or 2 x eps.
     """
 
     max_slices: int
@@ -63,7 +68,7 @@ class AdaptivePlan:
 
     @property
     def fine(self) -> float:
-        return 0.5 * self.eps
+        return self.eps
 
 
 def region_difference(a, b) -> float:
@@ -158,7 +163,7 @@ def sense_adaptive(mesh, name, config, progress=None):
     eps = float(config.eps) if config.eps is not None else default_eps(mesh)
     tol_share = (float(config.tol) / eps) if config.tol is not None else 1 / 20
     n = int(config.max_slices)
-    plan = AdaptivePlan(n, min(n, 5), float(config.slice_tol) * diag, eps)
+    plan = AdaptivePlan(n, 3 if n < 16 else 5, float(config.slice_tol) * diag, eps)
     normals = tuple(parse_axis(a) for a in config.axes)
     cuts = [family_slices(mesh, nrm, n) for nrm in normals]
     radius = max((s.bounding_circle()[1] for fam in cuts for s in fam if not s.is_empty),
@@ -182,16 +187,24 @@ def sense_adaptive(mesh, name, config, progress=None):
             got[f][i] = (out, e)
             regions[f][i] = _region(out, tol_share * e)
 
+    def finer(fi):  # sensed slices whose feature width asks for a finer eps than they got
+        return [(f, i, e) for f, i in fi if (e := _eps_for(regions[f][i], plan)) < got[f][i][1]]
+
+    fams = range(len(normals))
     start = sorted(set(np.round(np.linspace(0, n - 1, plan.initial)).astype(int).tolist()))
-    sense([(f, i, plan.coarse) for f in range(len(normals)) for i in start])
-    finer = [(f, i, e) for f in range(len(normals)) for i in start
-             if (e := _eps_for(regions[f][i], plan)) < plan.coarse]
-    if finer:
-        sense(finer)
+    mid = start[len(start) // 2]
+    sense([(f, mid, plan.coarse) for f in fams])  # one probe slice per family first
+    first = {f: min(_eps_for(regions[f][mid], plan), plan.coarse) for f in fams}
+    sense([(f, mid, first[f]) for f in fams if first[f] < plan.coarse]
+          + [(f, i, first[f]) for f in fams for i in start if i != mid])
+    new = [(f, i) for f in fams for i in start if i != mid]
     rounds = 1
     while True:
+        again = finer(new)  # a feature the neighbours did not show: sense it again, finer
+        if again:
+            sense(again)
         tasks = []
-        for f in range(len(normals)):
+        for f in fams:
             idx = sorted(got[f])
             for m in refine_pairs(idx, regions[f], plan.tol):
                 lo = max(i for i in idx if i < m)
@@ -201,6 +214,7 @@ def sense_adaptive(mesh, name, config, progress=None):
             break
         rounds += 1
         sense(tasks)
+        new = [(f, m) for f, m, _ in tasks]
     run = MeshRun(name, mesh, config, plan.fine, tol_share * plan.fine,
                   probe_length=4.0 * (radius + plan.coarse), jobs=jobs,
                   families=[Family(nrm) for nrm in normals])

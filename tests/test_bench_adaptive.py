@@ -73,6 +73,21 @@ def test_a_narrow_slot_is_sensed_again_at_a_finer_eps():
     plate = Manifold.cube([40, 30, 10]) - Manifold.cube([2.5, 25, 12]).translate([18, 6, -1])
     res = recon3d.run(_mesh(plate), slices="auto", max_slices=8, eps=0.5, jobs=1)
     ada = res.metrics["adaptive"]
-    assert ada["resensed"]["slices"] == len(res.slices) and ada["resensed"]["motions"] > 0
-    assert max(ada["eps"]["per_slice"]) < ada["eps"]["coarse"]
+    # the middle slice shows the slot at the coarse eps and is sensed again; the
+    # others are sensed at the eps it asked for at once (no second pass)
+    assert ada["resensed"]["slices"] == 1 and ada["resensed"]["motions"] > 0
+    assert len(res.slices) == 3
+    assert ada["eps"]["per_slice"] == pytest.approx([0.5] * 3)  # eps, never below it
+    assert res.metrics["total"]["coverage"] > 0.99
+
+
+def test_a_slot_the_probe_slice_did_not_show_is_sensed_again_where_it_shows():
+    # the slot only cuts the top 3 of 10 mm: the middle slice (z = 5.625) shows none
+    plate = Manifold.cube([40, 30, 10]) - Manifold.cube([2.5, 25, 4]).translate([18, 6, 7])
+    res = recon3d.run(_mesh(plate), slices="auto", max_slices=8, eps=0.5, jobs=1)
+    ada = res.metrics["adaptive"]
+    z, e = _heights(res), np.array(ada["eps"]["per_slice"])
+    assert ada["resensed"]["slices"] >= 1
+    # fine where the slot is (and between it and the coarse slices: the finer neighbour)
+    assert np.all(e[z > 7] == 0.5) and np.all(e[z < 6] == 1.0)
     assert res.metrics["total"]["coverage"] > 0.99

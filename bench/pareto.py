@@ -15,11 +15,14 @@ import numpy as np
 __all__ = ["FULL", "QUICK", "pareto_tasks", "run_case", "pareto_front", "adaptive_summary"]
 
 FULL = {"scenes": ("fig17_pocket", "fig18_overhangs", "stepped_pyramid", "bowl"),
-        "eps_shares": (1 / 50, 1 / 100, 1 / 200, 1 / 400), "slices": (4, 8, 16, 32),
-        "auto_max": 32, "auto_share": 1 / 200, "real": True}
+        "eps_shares": (1 / 25, 1 / 50, 1 / 100, 1 / 150), "slices": (4, 8, 16, 32),
+        "auto_max": 32, "auto_share": 1 / 100, "real": True}
 QUICK = {"scenes": ("fig17_pocket", "fig18_overhangs", "stepped_pyramid", "bowl"),
-         "eps_shares": (1 / 25, 1 / 40, 1 / 60, 1 / 100), "slices": (2, 3, 4, 6),
-         "auto_max": 6, "auto_share": 1 / 100, "real": False}
+         "eps_shares": (1 / 25, 1 / 40, 1 / 60, 1 / 100), "slices": (2, 4, 6, 8),
+         "auto_max": 8, "auto_share": 1 / 100, "real": False}
+"""The sweeps: ``auto_share`` is one of ``eps_shares`` and ``auto_max`` one of
+``slices``, so the adaptive run has a uniform run to be compared with (the
+full sweep is sized to finish within ~45 minutes on 2 shared cores)."""
 
 
 def pareto_tasks(plan: dict) -> list[dict]:

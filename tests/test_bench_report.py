@@ -7,7 +7,7 @@ import pytest
 
 from bench.baseline import equal_coverage
 from bench.charts import baseline_chart, pareto_chart, stability_chart
-from bench.pareto import adaptive_summary, pareto_front
+from bench.pareto import FULL, QUICK, adaptive_summary, pareto_front
 from bench.run3d import write_csv
 from bench.stability import breaking_points
 
@@ -34,6 +34,15 @@ def test_adaptive_summary_compares_with_the_uniform_run_at_max_slices():
     (row,) = adaptive_summary(PARETO, plan)
     assert row["case"] == "a" and row["uniform_slices"] == 8 and row["adaptive_slices"] == 5
     assert row["time_ratio"] == pytest.approx(0.75) and not row["target_met"]  # 5 > 8 / 2
+
+
+@pytest.mark.parametrize("plan", [pytest.param(FULL, id="full"), pytest.param(QUICK, id="quick")])
+def test_each_sweep_has_the_uniform_run_its_adaptive_run_is_compared_with(plan):
+    rows = [_p(c, "uniform", n, e, 1.0, 1e-3, 1.0) for c in ("a",) for n in plan["slices"]
+            for e in plan["eps_shares"]] + [_p("a", "adaptive", 3, plan["auto_share"], 1, 1e-3, 1)]
+    assert len(plan["eps_shares"]) >= 4 and len(plan["slices"]) >= 4 and len(plan["scenes"]) >= 4
+    (row,) = adaptive_summary(rows, plan)  # empty when no uniform run matches
+    assert row["uniform_slices"] == plan["auto_max"]
 
 
 def _b(method, cov, motions, path, dirs=0, sp=0.0):

@@ -92,8 +92,13 @@ def load_input(source):
     if isinstance(source, trimesh.Trimesh):
         if len(source.faces) == 0:
             raise InputError("the mesh has no faces")
-        name = source.metadata.get("scene") or source.metadata.get("file_name") or "mesh"
-        return source, str(name), []
+        from meshes.loading import open_edge_count
+
+        name = str(source.metadata.get("scene") or source.metadata.get("file_name") or "mesh")
+        notes = [] if source.is_watertight else [
+            f"{name}: mesh is not watertight ({open_edge_count(source)} boundary edges); "
+            f"slices may give open or broken contours"]
+        return source, name, notes
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", meshes.MeshWarning)
         try:

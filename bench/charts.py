@@ -24,8 +24,19 @@ def _colours(cases):
     return {c: cmap(i % 10) for i, c in enumerate(cases)}
 
 
+def _plain_log_x(ax):
+    """Log x axis with plain tick labels (1, 2, 5, 10, ...)."""
+    from matplotlib.ticker import FuncFormatter, LogLocator
+
+    ax.set_xscale("log")
+    ax.xaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_minor_locator(LogLocator(base=10, subs=tuple(range(1, 10))))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+
+
 def pareto_chart(rows, fronts, path) -> None:
-    """Wall time against Chamfer-L1 / diagonal, F@1% and 2D reachable coverage.
+    """CPU time against Chamfer-L1 / diagonal, F@1% and 2D reachable coverage.
 
     rows : list of dict (pareto.csv); fronts : dict key -> (n,) bool Pareto
     flags for the keys ``chamfer_l1_diag``, ``fscore_1``, ``coverage``.
@@ -46,18 +57,18 @@ def pareto_chart(rows, fronts, path) -> None:
             idx = [i for i, r in enumerate(rows) if r["case"] == case]
             uni = [i for i in idx if rows[i]["method"] == "uniform"]
             ada = [i for i in idx if rows[i]["method"] == "adaptive"]
-            ax.scatter([rows[i]["wall_s"] for i in uni], [rows[i][key] for i in uni],
+            ax.scatter([rows[i]["cpu_s"] for i in uni], [rows[i][key] for i in uni],
                        s=[10 + 3 * rows[i]["slices"] for i in uni], color=col[case], alpha=0.55,
                        edgecolors="none", label=case)
-            ax.scatter([rows[i]["wall_s"] for i in ada], [rows[i][key] for i in ada], marker="*",
+            ax.scatter([rows[i]["cpu_s"] for i in ada], [rows[i][key] for i in ada], marker="*",
                        s=280, color=col[case], edgecolors="black", linewidths=0.8, zorder=4)
-            f = sorted((i for i in idx if front[i]), key=lambda i: rows[i]["wall_s"])
-            ax.plot([rows[i]["wall_s"] for i in f], [rows[i][key] for i in f], "-",
+            f = sorted((i for i in idx if front[i]), key=lambda i: rows[i]["cpu_s"])
+            ax.plot([rows[i]["cpu_s"] for i in f], [rows[i][key] for i in f], "-",
                     color=col[case], lw=1.5, zorder=3)
-        ax.set_xscale("log")
+        _plain_log_x(ax)
         if key == "chamfer_l1_diag":
             ax.set_yscale("log")
-        ax.set_xlabel("wall time of the whole run, s (log)")
+        ax.set_xlabel("CPU time of the whole run, s (log; one process)")
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
     lo, hi = min(slices), max(slices)
@@ -68,7 +79,7 @@ def pareto_chart(rows, fronts, path) -> None:
     axes[2].scatter([], [], s=10 + 3 * hi, color="grey", label=f"uniform, {hi} slices")
     axes[2].legend(loc="lower right", fontsize=9)
     fig.suptitle("Speed against accuracy: eps x slice count per case (one colour per case, "
-                 "dot area = slices)")
+                 "dot area = slices; line = Pareto front; star = --slices auto)")
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
@@ -83,16 +94,24 @@ def baseline_chart(rows, path) -> None:
         fin = sorted((r for r in rows if r["case"] == case and r["method"] == "finger"),
                      key=lambda r: r["robot_time_s"])
         pull = [r for r in rows if r["case"] == case and r["method"] == "pulling"]
-        ax.plot([r["robot_time_s"] for r in fin], [r["coverage"] for r in fin], "o:",
-                color=col[case], ms=5, alpha=0.8, label=f"{case}: finger probing")
+        ax.scatter([r["robot_time_s"] for r in fin], [r["coverage"] for r in fin], s=22,
+                   color=col[case], alpha=0.7, label=f"{case}: finger probing (one density)")
+        best, front = -1.0, []  # the best coverage finger probing reaches within a robot time
+        for r in fin:
+            if r["coverage"] > best:
+                best = r["coverage"]
+                front.append(r)
+        ax.step([r["robot_time_s"] for r in front], [r["coverage"] for r in front], "-",
+                where="post", color=col[case], lw=1.3, alpha=0.9)
         ax.scatter([r["robot_time_s"] for r in pull], [r["coverage"] for r in pull], marker="*",
                    s=300, color=col[case], edgecolors="black", zorder=5)
     ax.scatter([], [], marker="*", s=200, color="grey", edgecolors="black",
                label="pulling (the paper's algorithm)")
+    ax.plot([], [], "-", color="grey", label="finger probing: best coverage within a robot time")
     ax.axhline(0.99, color="black", lw=0.8, ls="--")
     ax.text(0.99, 0.99, "99 %", va="bottom", ha="right", fontsize=9,
             transform=ax.get_yaxis_transform())
-    ax.set_xscale("log")
+    _plain_log_x(ax)
     ax.set_xlabel("robot time, s (log): joint path / probe speed + motions x overhead")
     ax.set_ylabel("2D reachable coverage")
     ax.set_title("Finger probing swept in density (directions x line spacing) against pulling, "

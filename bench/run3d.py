@@ -111,7 +111,8 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
         if by["pareto"]:
             rows = sorted(by["pareto"], key=lambda r: (r["case"], r["method"], r["eps_share"],
                                                       r["slices"]))
-            fronts = {k: pareto.pareto_front(rows, y=k, lower_is_better=k == "chamfer_l1_diag")
+            fronts = {k: pareto.pareto_front(rows, x="cpu_s", y=k,
+                                             lower_is_better=k == "chamfer_l1_diag")
                       for k in ("chamfer_l1_diag", "fscore_1", "coverage")}
             for k, r in enumerate(rows):
                 for key, flag in fronts.items():
@@ -124,7 +125,7 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
                          f"{plan['auto_max']} uniform slices, eps = diagonal / "
                          f"{round(1 / plan['auto_share'])}:")
             _table(lines, ["case", "slices u/a", "F@1% u", "F@1% a", "slices", "wall", "cpu",
-                           "robot", "target"], ada,
+                           "robot", "target (F, slices, cpu)"], ada,
                    ["case", "adaptive_slices", "uniform_f1", "adaptive_f1", "slice_ratio",
                     "time_ratio", "cpu_ratio", "robot_ratio", "target_met"],
                    ["", "d", ".3f", ".3f", ".2f", ".2f", ".2f", ".2f", ""])

@@ -2,20 +2,26 @@
 
 This is the only module that sees both rooms of core2d: it builds the
 simulated probe (:mod:`core2d.sim`, which owns the geometry) and hands it to
-the planner (:mod:`core2d.planner.run`, which sees sensor readings only).
+the planner (:mod:`core2d.planner.run`, which sees sensor readings only) or,
+with ``method="finger"``, to the dense finger-probing baseline
+(:mod:`core2d.planner.finger`).
 """
 from __future__ import annotations
 
+from core2d.planner.finger import finger_probe
 from core2d.planner.run import explore
 from core2d.result import SliceResult
 from core2d.sim.probe import Probe
 
-__all__ = ["sense_slice"]
+__all__ = ["sense_slice", "METHODS"]
+
+METHODS = ("pulling", "finger")
 
 
 def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
-                max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
-    """Run the pulling-motion algorithm on one closed slice.
+                max_motions=20000, max_areas=4000, bootstrap_count=12,
+                method="pulling", directions=32, spacing=None) -> SliceResult:
+    """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
     ----------
@@ -27,10 +33,18 @@ def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
     tol : float, optional -- contact resolution, default eps / 20.
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
+    method : {'pulling', 'finger'} -- the paper's algorithm, or straight
+        insertions on a grid (:func:`core2d.planner.finger.finger_probe`).
+    directions, spacing : finger probing only -- insertion directions and
+        line spacing (default eps / 2).
 
     Returns
     -------
     SliceResult in the slice's 2D frame.
     """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     probe = Probe(contact, workspace, eps, probe_length, tol)
+    if method == "finger":
+        return finger_probe(probe, eps, directions, spacing, max_motions)
     return explore(probe, eps, max_motions, max_areas, bootstrap_count)

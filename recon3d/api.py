@@ -92,8 +92,13 @@ def load_input(source):
     if isinstance(source, trimesh.Trimesh):
         if len(source.faces) == 0:
             raise InputError("the mesh has no faces")
-        name = source.metadata.get("scene") or source.metadata.get("file_name") or "mesh"
-        return source, str(name), []
+        from meshes.loading import open_edge_count
+
+        name = str(source.metadata.get("scene") or source.metadata.get("file_name") or "mesh")
+        notes = [] if source.is_watertight else [
+            f"{name}: mesh is not watertight ({open_edge_count(source)} boundary edges); "
+            f"slices may give open or broken contours"]
+        return source, name, notes
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", meshes.MeshWarning)
         try:
@@ -114,9 +119,15 @@ def validate(mesh, config, names=None) -> list[str]:
     from slicer import parse_axis
 
     n = {k: k for k in ("eps", "tol", "slices", "axis", "jobs", "max_motions",
-                        "probe_speed", "motion_overhead")}
+                        "probe_speed", "motion_overhead", "max_slices", "slice_tol")}
     n.update(names or {})
-    at_least(config.slices, n["slices"])
+    if config.slices == "auto":
+        at_least(config.max_slices, n["max_slices"], low=3)
+        if not 0 < positive(config.slice_tol, n["slice_tol"]) < 0.5:
+            raise InputError(f"{n['slice_tol']} is a share of the diagonal in (0, 0.5) "
+                             f"(got {config.slice_tol})")
+    else:
+        at_least(config.slices, n["slices"])
     at_least(config.max_motions, n["max_motions"])
     if config.jobs is not None:
         at_least(config.jobs, n["jobs"])
@@ -141,18 +152,23 @@ def validate(mesh, config, names=None) -> list[str]:
 
 def make_config(axis="z", slices: int = 8, eps: float | None = None, tol: float | None = None,
                 backend: str = "embree", jobs: int | None = None, max_motions: int = 20000,
-                probe_speed: float = 20.0, motion_overhead: float = 0.2):
+                probe_speed: float = 20.0, motion_overhead: float = 0.2, max_slices: int = 32,
+                slice_tol: float = 0.005):
     """A :class:`recon3d.pipeline.RunConfig` from :func:`run`'s keywords."""
     from recon3d.pipeline import RunConfig
+    from slicer import BACKENDS
 
-    if backend not in ("embree", "exact"):
-        raise InputError(f"backend must be 'embree' or 'exact' (got {backend!r})")
+    if backend not in BACKENDS:
+        raise InputError(f"backend must be one of {', '.join(BACKENDS)} (got {backend!r})")
+    if isinstance(slices, str) and slices != "auto":
+        raise InputError(f"slices must be an integer or 'auto' (got {slices!r})")
     axes = tuple(axis) if isinstance(axis, (list, tuple)) else (axis,)
     if axes and all(isinstance(a, (int, float, np.number)) for a in axes):
         axes = (np.asarray(axes, dtype=float),)  # one vector given as a list
     return RunConfig(axes=axes, slices=slices, eps=eps, backend=backend, tol=tol,
                      max_motions=max_motions, jobs=jobs, probe_speed=probe_speed,
-                     motion_overhead=motion_overhead)
+                     motion_overhead=motion_overhead, max_slices=max_slices,
+                     slice_tol=slice_tol)
 
 
 def execute(mesh, name: str, config, notes=(), progress=None, stage=None) -> Result:
@@ -160,12 +176,14 @@ def execute(mesh, name: str, config, notes=(), progress=None, stage=None) -> Res
 
     stage : callable(str), optional -- told when reconstruction and scoring start.
     """
+    from recon3d.adaptive import sense_adaptive
     from recon3d.output import metrics_document
     from recon3d.pipeline import sense_mesh
     from recon3d.reconstruct import reconstruct, score
 
     notes = list(notes)
-    sensed = sense_mesh(mesh, name, config, progress)
+    sense = sense_adaptive if config.slices == "auto" else sense_mesh
+    sensed = sense(mesh, name, config, progress)
     notes += sensed.nudge_notes
     if stage is not None:
         stage("reconstructing")
@@ -173,22 +191,29 @@ def execute(mesh, name: str, config, notes=(), progress=None, stage=None) -> Res
     if stage is not None:
         stage("scoring")
     surface, info = score(sensed, recon)
-    return Result(mesh, sensed, recon, metrics_document(sensed, surface, info), notes)
+    metrics = metrics_document(sensed, surface, info)
+    if sensed.adaptive is not None:
+        metrics["adaptive"] = sensed.adaptive
+    return Result(mesh, sensed, recon, metrics, notes)
 
 
 def run(source, axis="z", slices: int = 8, eps: float | None = None, tol: float | None = None,
         backend: str = "embree", jobs: int | None = None, max_motions: int = 20000,
-        probe_speed: float = 20.0, motion_overhead: float = 0.2, progress=None) -> Result:
+        probe_speed: float = 20.0, motion_overhead: float = 0.2, max_slices: int = 32,
+        slice_tol: float = 0.005, progress=None) -> Result:
     """Sense, reconstruct and score a mesh.
 
     Parameters
     ----------
     source : trimesh.Trimesh, scene name or mesh file path.
     axis : str, (3,) float, or a list of them -- one slice family per axis.
-    slices : int -- planes per family (a surface needs at least 2).
+    slices : int or 'auto' -- planes per family (a surface needs at least 2);
+        'auto': adaptive slicing (:mod:`recon3d.adaptive`) among ``max_slices``
+        candidates, refining where neighbouring sensed regions differ by more
+        than ``slice_tol`` x the diagonal.
     eps, tol : float, optional -- the paper's eps (default diagonal / 200) and
         the contact resolution (default eps / 20); bounds in :mod:`recon3d.checks`.
-    backend : 'embree' or 'exact'.
+    backend : 'embree', 'exact' or 'trimesh'.
     jobs : int, optional -- processes (default: every core); results do not depend on it.
     max_motions : int -- motion budget per slice.
     probe_speed, motion_overhead : float -- robot time model (mesh units / s, s / motion).
@@ -209,7 +234,7 @@ def run(source, axis="z", slices: int = 8, eps: float | None = None, tol: float 
     import warnings
 
     config = make_config(axis, slices, eps, tol, backend, jobs, max_motions, probe_speed,
-                         motion_overhead)
+                         motion_overhead, max_slices, slice_tol)
     mesh, name, notes = load_input(source)
     notes += validate(mesh, config)
     for note in notes:  # not watertight, coarse eps: say it where the caller looks

@@ -1,4 +1,4 @@
-"""Command line: ``recon3d scenes | run | show | bench``.
+"""Command line: ``recon3d scenes | run | show | batch | bench``.
 
 Every user error ends with one line on stderr and exit status 2; no
 traceback. Python warnings print as one line (``recon3d: warning: ...``),
@@ -65,11 +65,6 @@ def _cmd_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_bench(args: argparse.Namespace) -> int:
-    raise UsageError("'recon3d bench' runs from a checkout: python -m bench.bench_recon "
-                     "(see bench/README.md)")
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="recon3d",
@@ -83,13 +78,17 @@ def build_parser() -> argparse.ArgumentParser:
     from recon3d.run_cmd import add_run_parser
 
     add_run_parser(sub)
+    from recon3d.batch_cmd import add_batch_parser
+
+    add_batch_parser(sub)
     p = sub.add_parser("show", help="open a run's scene in an interactive pyvista window",
                        description="Open DIR/scene.vtm (written by 'recon3d run') in an "
                        "interactive window with the two coverage panels; needs a display.")
     p.add_argument("dir", metavar="DIR", help="output directory of 'recon3d run'")
     p.set_defaults(func=_cmd_show)
-    p = sub.add_parser("bench", help="benchmarks (python -m bench.bench_recon in a checkout)")
-    p.set_defaults(func=_cmd_bench)
+    from recon3d.bench_cmd import add_bench_parser
+
+    add_bench_parser(sub)
     return parser
 
 

@@ -3,7 +3,9 @@
 Per slice, the filled region of :mod:`recon3d.closure` gives a 2D signed
 distance on a regular grid of the family's frame (positive inside, the
 convention of ``manifold3d.Manifold.level_set``), truncated at +-T with T
-the largest gap between neighbouring slices. Between two slices the field is
+the largest gap between neighbouring slices (and, between two slices, at
+the gap between them: with uneven gaps -- adaptive slicing -- a step in the
+section stays a step). Between two slices the field is
 interpolated linearly along the normal (shape-based interpolation, Herman et
 al. 1992): a loop that keeps its shape makes a straight prism, a loop that
 vanishes tapers off at roughly 45 degrees, loops that split or merge do so
@@ -142,9 +144,11 @@ def family_volume(regions, grid: FamilyGrid) -> np.ndarray:
     vol = np.full((grid.layers, ny, nx), -grid.truncation, dtype=np.float32)
     f = [slice_sdf(r, grid).reshape(ny, nx) for r in regions]
     w = (np.arange(grid.k, dtype=np.float32) / grid.k)[:, None, None]
+    gaps = np.diff(grid.heights)
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
-        vol[a:a + grid.k] = (1 - w) * f[i] + w * f[i + 1]
+        t = np.float32(max(gaps[i], 2 * grid.step))  # per gap: uneven slices keep steps sharp
+        vol[a:a + grid.k] = (1 - w) * np.clip(f[i], -t, t) + w * np.clip(f[i + 1], -t, t)
     vol[grid.slice_layer(len(f) - 1)] = f[-1]
     small = np.abs(vol) < _MIN_VALUE * grid.step  # interpolation can cross 0 exactly
     vol[small] = np.copysign(_MIN_VALUE * grid.step, vol[small])

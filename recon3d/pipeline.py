@@ -25,7 +25,8 @@ class RunConfig:
 
     axes : tuple -- one slice normal per family ('x', 'y', 'z', '-x', 'nx,ny,nz'
         or a (3,) vector).
-    slices : int -- evenly spaced planes per family, strictly inside the mesh.
+    slices : int or 'auto' -- evenly spaced planes per family, strictly inside
+        the mesh; 'auto': adaptive slicing (:mod:`recon3d.adaptive`).
     eps : float or None -- the paper's epsilon; default bbox diagonal / 200.
     backend : str -- 'embree' or 'exact' contact backend.
     tol : float or None -- contact resolution, default eps / 20.
@@ -34,6 +35,9 @@ class RunConfig:
     jobs : int or None -- worker processes, default the number of cores.
     probe_speed : float -- joint speed, mesh units per second (scenes: mm/s).
     motion_overhead : float -- seconds per motion (stop, sense, plan).
+    max_slices : int -- 'auto': candidate planes per family (the uniform run it replaces).
+    slice_tol : float -- 'auto': neighbouring sensed regions differing by more
+        than this share of the diagonal get a slice between them.
     """
 
     axes: tuple = ("z",)
@@ -46,6 +50,8 @@ class RunConfig:
     jobs: int | None = None
     probe_speed: float = 20.0
     motion_overhead: float = 0.2
+    max_slices: int = 32
+    slice_tol: float = 0.005
 
 
 @dataclass
@@ -102,6 +108,7 @@ class MeshRun:
     families: list = field(default_factory=list)
     seconds: float = 0.0
     jobs: int = 1
+    adaptive: dict | None = None
 
     @property
     def slices(self) -> list:

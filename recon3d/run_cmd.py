@@ -1,6 +1,7 @@
 """``recon3d run INPUT --out DIR``: sense, reconstruct, score, write the outputs."""
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 
@@ -10,7 +11,18 @@ __all__ = ["add_run_parser", "run_command"]
 
 FLAGS = {"eps": "--eps", "tol": "--tol", "slices": "--slices", "axis": "--axis",
          "jobs": "--jobs", "max_motions": "--max-motions", "probe_speed": "--probe-speed",
-         "motion_overhead": "--motion-overhead"}
+         "motion_overhead": "--motion-overhead", "max_slices": "--max-slices",
+         "slice_tol": "--slice-tol"}
+
+
+def _slices(text):
+    """``--slices``: a positive integer or 'auto'."""
+    if text == "auto":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer or 'auto', got {text!r}") from None
 
 
 def add_run_parser(sub) -> None:
@@ -27,15 +39,23 @@ def add_run_parser(sub) -> None:
     p.add_argument("--axis", action="append", default=None, metavar="AXIS",
                    help="slice normal: x, y, z, -x, ... or nx,ny,nz; repeat for several "
                    "families fused into one surface (default z)")
-    p.add_argument("--slices", type=int, default=8, help="slices per axis (default 8)")
+    p.add_argument("--slices", type=_slices, default=8,
+                   help="slices per axis (default 8), or 'auto': adaptive slicing -- start "
+                   "coarse, add slices where neighbouring sensed sections differ, eps per "
+                   "slice from the features it shows")
+    p.add_argument("--max-slices", type=int, default=32,
+                   help="--slices auto: candidate planes per axis (default 32)")
+    p.add_argument("--slice-tol", type=float, default=0.005,
+                   help="--slices auto: refine between neighbours whose sensed sections "
+                   "differ by more than this share of the diagonal (default 0.005)")
     p.add_argument("--eps", type=float, default=None,
                    help=f"the paper's epsilon, in mesh units (default: bounding-box diagonal "
                    f"/ 200; allowed: {lo:g} to {hi:g} x diagonal)")
     p.add_argument("--tol", type=float, default=None,
                    help=f"contact resolution (default eps/20; allowed: eps*{TOL_SHARE:g} "
                    f"up to, not including, eps)")
-    p.add_argument("--backend", choices=("embree", "exact"), default="embree",
-                   help="contact backend (default embree)")
+    p.add_argument("--backend", choices=("embree", "exact", "trimesh"), default="embree",
+                   help="contact backend (default embree; trimesh: its generic ray engine, slow)")
     p.add_argument("--max-motions", type=int, default=20000,
                    help="motion budget per slice (default 20000)")
     p.add_argument("--jobs", type=int, default=None,
@@ -69,7 +89,7 @@ def run_command(args) -> int:
     try:
         config = make_config(args.axis or ["z"], args.slices, args.eps, args.tol, args.backend,
                              args.jobs, args.max_motions, args.probe_speed,
-                             args.motion_overhead)
+                             args.motion_overhead, args.max_slices, args.slice_tol)
         mesh, name, notes = load_input(args.input)
         notes += validate(mesh, config, FLAGS)
         check_out_dir(args.out, "--out")
@@ -81,7 +101,8 @@ def run_command(args) -> int:
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     for note in notes:
         warn(note)
-    bar = _progress_bar(config.slices * len(config.axes), name, args.quiet)
+    per_axis = config.max_slices if config.slices == "auto" else config.slices
+    bar = _progress_bar(per_axis * len(config.axes), name, args.quiet)
 
     def progress(outcome):
         if bar is not None:

@@ -13,7 +13,7 @@ totals; its cost counters still count.
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -142,9 +142,12 @@ class WorkerState:
             self._families[family] = family_slices(self.mesh, axis, self.settings.slices)
         return self._families[family]
 
-    def sense(self, family: int, index: int) -> SliceOutcome:
-        """Sense slice ``index`` of ``family`` and score it against its reference."""
+    def sense(self, family: int, index: int, eps: float | None = None) -> SliceOutcome:
+        """Sense slice ``index`` of ``family`` and score it against its reference
+        (at ``eps`` instead of the run's, tol scaled alike, when given)."""
         st = self.settings
+        if eps is not None:
+            st = replace(st, eps=float(eps), tol=st.tol * float(eps) / st.eps)
         cut = self.slices(family)[index]
         if cut.is_empty:
             result = core2d.SliceResult()

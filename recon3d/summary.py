@@ -56,14 +56,15 @@ def summary_lines(result, files=()) -> list[str]:
     else:
         lines.append("  3D  no surface: " + ("; ".join(ev.get("notes", [])) or "nothing sensed"))
     lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
-                 f"{t.get('pushes', 0)}  budget hits {t.get('budget_hits', 0)}  robot time "
+                 f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
+                 f"{t.get('push_attempts', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
                  f"{format_seconds(t.get('robot_time_s'))} (at {run.config.probe_speed:g} "
                  f"units/s + {run.config.motion_overhead:g} s/motion)")
     several = [s for s in run.slices if s.outer_loops > 1]
     if several:
         lines.append(f"  {len(several)} slices hold several objects (outside the paper's "
-                     f"single-object assumption, §3.2; W3 lids between objects count as "
-                     f"unsound): {_names(run, several)}")
+                     f"single-object assumption, §3.2; the planner probes between them, and a "
+                     f"W3 lid bridging two would count as unsound): {_names(run, several)}")
     noref = [s for s in run.slices if not s.has_reference]
     if noref:
         lines.append(f"  {len(noref)} slices have no closed reference contour (open mesh): "

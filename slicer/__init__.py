@@ -3,7 +3,8 @@
 Cut a triangle mesh with parallel planes; on each plane, get the reference
 cross-section (closed loops in the plane's 2D frame) and a contact model
 whose ``cast(origins, dirs, max_dist)`` answers in-plane ray queries with
-Embree (``EmbreeContact``) or exactly against the contour (``ExactContact``);
+Embree (``EmbreeContact``), exactly against the contour (``ExactContact``)
+or with trimesh's generic ray engine (``TrimeshContact``);
 see :mod:`core2d.sim.contact` for the contract.
 
 Examples
@@ -26,7 +27,8 @@ from slicer.embree_contact import EmbreeContact
 from slicer.exact import ExactContact
 from slicer.planes import SlicePlane, frame_for_normal, make_planes, parse_axis
 from slicer.section import Section, sections
-from slicer.slices import Slice, slice_mesh
+from slicer.slices import BACKENDS, Slice, slice_mesh
+from slicer.trimesh_contact import TrimeshContact
 
 __all__ = [
     "SlicePlane",
@@ -40,6 +42,8 @@ __all__ = [
     "sections",
     "EmbreeContact",
     "ExactContact",
+    "TrimeshContact",
+    "BACKENDS",
     "Slice",
     "slice_mesh",
     "AgreementReport",

@@ -25,10 +25,11 @@ from slicer.embree_contact import EmbreeContact
 from slicer.exact import ExactContact
 from slicer.planes import SlicePlane, make_planes
 from slicer.section import sections
+from slicer.trimesh_contact import TrimeshContact
 
 __all__ = ["Slice", "slice_mesh", "BACKENDS"]
 
-BACKENDS = ("embree", "exact")
+BACKENDS = ("embree", "exact", "trimesh")
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,10 +76,12 @@ class Slice:
 
         Parameters
         ----------
-        backend : {'embree', 'exact'}
+        backend : {'embree', 'exact', 'trimesh'}
             ``embree``: :class:`~slicer.embree_contact.EmbreeContact` on the
             triangles crossing the plane; ``exact``:
-            :class:`~slicer.exact.ExactContact` on the reference contour.
+            :class:`~slicer.exact.ExactContact` on the reference contour;
+            ``trimesh``: :class:`~slicer.trimesh_contact.TrimeshContact`
+            (trimesh's generic ray engine on the crossing triangles).
 
         Returns
         -------
@@ -90,6 +93,8 @@ class Slice:
                 model = EmbreeContact(self.mesh, self.plane)
             elif backend == "exact":
                 model = ExactContact(self.loops, chains=self.open_chains)
+            elif backend == "trimesh":
+                model = TrimeshContact(self.mesh, self.plane)
             else:
                 raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
             self._backends[backend] = model

@@ -1,5 +1,5 @@
-"""Constructed slices for the events of a trace (§4.3.2) and Theorem 1's
-common-point aim (Fig. 5(c)), each built so that the decision under test
+"""Constructed slices for the events of a trace (§4.3.2), Theorem 1's
+common-point aim (Fig. 5(c)) and the Fig. 12(c) split, each built so that the decision under test
 changes the outcome.
 
 A trace is started from a chosen final state of the bisection (a probe
@@ -14,8 +14,9 @@ import pytest
 
 from core2d.planner.areas import Area
 from core2d.planner.local_search import LocalResult, definition5, initial_pass
-from core2d.planner.regions import G_region, common_point, trace_direction
-from core2d.planner.tracing import trace_side
+from core2d.planner.regions import G_region, Posture, common_point, trace_direction
+from core2d.planner.tracing import plan_sides, split_contact, trace_side
+from core2d.readings import LEFT, TIP, Contact, Reading
 from figure_scenes import (DOWN, EPS, V_POCKET, block, make_probe, on_int, place, pose_to,
                            posture_touches, vertical_area)
 
@@ -145,3 +146,26 @@ def test_fig5c_asymmetric_chord_centre_aim_would_touch_Ext(monkeypatch):
     r, _, _ = initial_pass(probe, area)
     assert r is not None and not on_int(loops, area.a, area.b, r.tip_contact.point)
     assert r.tip_contact.point[1] > 90  # on the shelf
+
+
+@pytest.mark.parametrize("lip, splits", [
+    ((40.0, 55.0), True),   # over the chord, inside G_i: Int
+    ((40.0, 10.0), True),   # under the chord, inside T_i and out of V_i: Int
+    ((5.0, 55.0), False),   # beside the area, out of G_i and T_i: Ext
+    ((90.0, 20.0), False),  # past B_i, under the chord but out of T_i: Ext
+])
+def test_fig12c_splits_only_at_a_Q_on_Int(lip, splits):
+    """Fig. 12(c) / Fig. 13: a one-sided start (Theorem 4 (D)) splits A_iB_i
+    at the side contact Q only when Q is on Int(A_iB_i); a Q on Ext (contour
+    outside the area, e.g. another island under the probe's side) must not
+    become an end of an unknown area."""
+    a, b = np.array([10.0, 30.0]), np.array([70.0, 30.0])
+    area = Area(a, b, Posture(np.array([10.0, 350.0]), DOWN), Posture(np.array([70.0, 350.0]), DOWN))
+    G = G_region(area.a, area.b, area.pose_a, area.pose_b)
+    joint_i = np.array([40.0, 350.0])
+    contacts = (Contact(np.array([40.0, 30.0]), TIP, 320.0), Contact(np.array(lip), LEFT, 290.0))
+    local = LocalResult(Reading(joint_i, DOWN, contacts), contacts[0].point, 2, 0, 1)
+    sides, q = plan_sides(local)
+    assert sides == [True] and q.face == LEFT  # (D): Q proposed by Theorem 4
+    got = split_contact(q, area, G, joint_i)
+    assert (got is q) if splits else (got is None)

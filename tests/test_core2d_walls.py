@@ -85,9 +85,10 @@ class _Guarded:
         return self.inner.cast(origins, dirs, max_dist)
 
 
-def test_only_the_simulator_queries_geometry_at_run_time():
+@pytest.mark.parametrize("method", ["pulling", "finger"])
+def test_only_the_simulator_queries_geometry_at_run_time(method):
     loop = np.array([[0, 0], [100, 0], [100, 50], [60, 50], [50, 20], [40, 50], [0, 50]], float)
     guarded = _Guarded([loop])
-    res = sense_slice(guarded, (np.array([50.0, 25.0]), 57.0), eps=1.0)
+    res = sense_slice(guarded, (np.array([50.0, 25.0]), 57.0), eps=1.0, method=method)
     assert guarded.callers and guarded.callers <= SIMULATOR
-    assert res.w1 and res.stats.pushes == 0
+    assert (res.w1 or res.w2) and res.stats.pushes == 0

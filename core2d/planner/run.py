@@ -39,7 +39,7 @@ from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.regions import Posture, near_probe
-from core2d.planner.tracing import attach_pivot_G, is_internal, plan_sides, trace_side
+from core2d.planner.tracing import attach_pivot_G, plan_sides, split_contact, trace_side
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
@@ -217,8 +217,7 @@ class _Run:
     def trace(self, area, G, joint_i, local):
         probe = self.probe
         sides, q = plan_sides(local)
-        if q is not None and not is_internal(q.point, area, G, joint_i):
-            q = None  # Fig. 12(c) needs Q on Int(A_iB_i) (Fig. 13's test); Ext: no split
+        q = split_contact(q, area, G, joint_i)  # Fig. 12(c) only with Q on Int
         pose_d = Posture(local.reading.joint, local.reading.direction)
         kids = []
         dq = None

@@ -20,7 +20,7 @@ from core2d.planner.areas import pivot_G, register
 from core2d.readings import LEFT, RIGHT, TIP
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 
-__all__ = ["plan_sides", "trace_side", "attach_pivot_G", "is_internal"]
+__all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal"]
 
 
 def plan_sides(local):
@@ -40,6 +40,20 @@ def plan_sides(local):
     if right is not None:
         return [False], right  # (E)
     return [True, False], None
+
+
+def split_contact(q, area, G, joint_i):
+    """Fig. 12(c): the contact Q of a one-sided start splits A_iB_i into
+    (D_i, Q) and (Q, P_fin) only when Q lies on Int(A_iB_i) (Fig. 13's test,
+    :func:`is_internal`). A Q on Ext (the probe's side resting on contour
+    outside the area, e.g. a neighbouring island) says nothing about
+    C_{A_i}^{B_i}: no split, returns None.
+
+    q : Contact or None -- from :func:`plan_sides`.
+    """
+    if q is None or not is_internal(q.point, area, G, joint_i):
+        return None
+    return q
 
 
 def _on_probe(point, probe) -> bool:

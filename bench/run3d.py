@@ -1,0 +1,180 @@
+"""``recon3d bench``: every sweep of the 3D benchmark on Dask, CSV + PNG + a short table.
+
+Parts (``--parts``; all by default):
+
+* ``pareto`` -- :mod:`bench.pareto`: pareto.csv / pareto.png, adaptive.csv;
+* ``backends`` -- :mod:`bench.backends`: backends.csv;
+* ``baseline`` -- :mod:`bench.baseline`: baseline.csv / baseline.png;
+* ``stability`` -- :mod:`bench.stability`: stability.csv / stability.png, breaks.csv.
+
+All tasks of all parts go to one Dask cluster (:func:`recon3d.distributed.run_tasks`),
+longest first. Files are written at the end, all together.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+__all__ = ["PARTS", "run_bench", "dispatch", "write_csv"]
+
+PARTS = ("pareto", "backends", "baseline", "stability")
+
+
+def dispatch(task: dict) -> dict:
+    """Run one task of any part (the function Dask workers call): its rows and seconds."""
+    import logging
+    import time
+
+    from bench import backends, baseline, pareto, stability
+
+    logging.getLogger("slicer").setLevel(logging.ERROR)  # planes near vertices: on purpose
+    fn = {"pareto": pareto.run_case, "backends": backends.compare_slice,
+          "baseline": baseline.compare_probing, "stability": stability.run_factor}[task["part"]]
+    t0 = time.perf_counter()
+    try:
+        rows = fn(task)
+    except Exception as exc:  # one failed task is reported, the sweep goes on
+        return {"rows": [], "seconds": time.perf_counter() - t0,
+                "error": f"{type(exc).__name__}: {exc}"[:200]}
+    return {"rows": rows if isinstance(rows, list) else [rows],
+            "seconds": time.perf_counter() - t0, "error": ""}
+
+
+def _tasks(parts, quick):
+    from bench import backends, baseline, pareto, stability
+
+    plan = pareto.QUICK if quick else pareto.FULL
+    made = {"pareto": lambda: pareto.pareto_tasks(plan),
+            "backends": lambda: backends.backend_tasks(quick),
+            "baseline": lambda: baseline.baseline_tasks(quick),
+            "stability": lambda: stability.stability_tasks(quick)}
+    tasks = []
+    for part in parts:
+        tasks += [dict(t, part=part) for t in made[part]()]
+
+    def weight(t):  # rough cost, for longest-first scheduling
+        if t["part"] == "pareto":
+            n = t.get("max_slices") if t["slices"] == "auto" else t["slices"]
+            return n / t["eps_share"] / 200
+        return {"backends": 60, "baseline": 30, "stability": 10}[t["part"]]
+
+    return sorted(tasks, key=weight, reverse=True), plan
+
+
+def write_csv(path, rows) -> None:
+    """Rows (dicts) to CSV; columns in first-seen order, NaN written empty."""
+    cols = list(dict.fromkeys(k for r in rows for k in r))
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("" if isinstance(v, float) and math.isnan(v) else v)
+                        for k, v in r.items()})
+
+
+def _fmt(v, f=".3f"):
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "n/a"
+    return format(v, f) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
+
+
+def _table(lines, head, rows, keys, fmts):
+    lines.append("  ".join(head))
+    for r in rows:
+        lines.append("  ".join(_fmt(r[k], f) for k, f in zip(keys, fmts)))
+
+
+def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PARTS,
+              quiet: bool = False) -> list[str]:
+    """Run the parts, write their files into ``out``; the printed table's lines."""
+    from bench import backends, baseline, charts, pareto, stability
+    from recon3d.distributed import run_tasks
+
+    tasks, plan = _tasks(parts, quick)
+    results = run_tasks(dispatch, tasks, scheduler, workers, desc="bench", quiet=quiet)
+    by = {p: [] for p in PARTS}
+    timing = []
+    for t, r in zip(tasks, results):
+        by[t["part"]] += r["rows"]
+        timing.append({"part": t["part"], **{k: t.get(k) for k in (
+            "case", "factor", "value", "slices", "eps_share")}, "seconds": r["seconds"],
+            "error": r["error"]})
+    lines = [f"recon3d bench{' --quick' if quick else ''}: {len(tasks)} tasks"]
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=".bench-", dir=out))
+    try:
+        if by["pareto"]:
+            rows = sorted(by["pareto"], key=lambda r: (r["case"], r["method"], r["eps_share"],
+                                                      r["slices"]))
+            fronts = {k: pareto.pareto_front(rows, x="cpu_s", y=k,
+                                             lower_is_better=k == "chamfer_l1_diag")
+                      for k in ("chamfer_l1_diag", "fscore_1", "coverage")}
+            for k, r in enumerate(rows):
+                for key, flag in fronts.items():
+                    r[f"pareto_{key}"] = bool(flag[k])
+            write_csv(stage / "pareto.csv", rows)
+            charts.pareto_chart(rows, fronts, stage / "pareto.png")
+            ada = pareto.adaptive_summary(rows, plan)
+            write_csv(stage / "adaptive.csv", ada)
+            lines.append(f"\nadaptive (--slices auto, max {plan['auto_max']}) against "
+                         f"{plan['auto_max']} uniform slices, eps = diagonal / "
+                         f"{round(1 / plan['auto_share'])}:")
+            _table(lines, ["case", "slices u/a", "F@1% u", "F@1% a", "slices", "wall", "cpu",
+                           "robot", "target (F, slices, cpu)"], ada,
+                   ["case", "adaptive_slices", "uniform_f1", "adaptive_f1", "slice_ratio",
+                    "time_ratio", "cpu_ratio", "robot_ratio", "target_met"],
+                   ["", "d", ".3f", ".3f", ".2f", ".2f", ".2f", ".2f", ""])
+        if by["backends"]:
+            write_csv(stage / "backends.csv", by["backends"])
+            lines.append("\ncontact backends (same slices, one process; agreement of W classes "
+                         "with exact):")
+            _table(lines, ["case", "backend", "motions", "ms/motion", "x embree", "agreement"],
+                   by["backends"], ["case", "backend", "motions", "ms_per_motion",
+                                    "time_per_motion_vs_embree", "agreement"],
+                   ["", "", "d", ".3f", ".2f", ".4f"])
+        if by["baseline"]:
+            write_csv(stage / "baseline.csv", by["baseline"])
+            charts.baseline_chart(by["baseline"], stage / "baseline.png")
+            eq = baseline.equal_coverage(by["baseline"])
+            write_csv(stage / "baseline_ratios.csv", eq)
+            lines.append("\nfinger probing against pulling at equal reachable coverage "
+                         "(finger / pulling):")
+            _table(lines, ["case", "cov pull", "cov finger", "density", "motions", "joint path",
+                           "robot time", "robot@99%"], eq,
+                   ["case", "pulling_coverage", "finger_coverage", "finger_density",
+                    "motions_ratio", "joint_path_ratio", "robot_time_ratio",
+                    "robot_time_ratio_at_99"], ["", ".4f", ".4f", "", ".1f", ".1f", ".1f", ".1f"])
+        if by["stability"]:
+            rows = by["stability"]
+            breaks = stability.breaking_points(rows)
+            write_csv(stage / "stability.csv", rows)
+            write_csv(stage / "breaks.csv", breaks)
+            charts.stability_chart(rows, breaks, stage / "stability.png")
+            lines.append("\nstability: where each method breaks (first value; none = never):")
+            _table(lines, ["factor", "method", "breaks at", "why"], breaks,
+                   ["factor", "method", "breaks_at", "why"], ["", "", "g", ""])
+        write_csv(stage / "tasks.csv", timing)
+        failed = [t for t in timing if t["error"]]
+        if failed:
+            lines.append(f"\n{len(failed)} tasks failed (tasks.csv has them):")
+            lines += [f"  {t['part']} {t['case'] or t['factor']} {t['value'] or ''}: {t['error']}"
+                      for t in failed]
+        cpu = {p: sum(t["seconds"] for t in timing if t["part"] == p) for p in parts}
+        lines.append("\ntask seconds per part (sum over tasks): " + ", ".join(
+            f"{p} {cpu[p]:.0f}" for p in parts))
+        lines.append("\nreconstruction methods: one (shape-based interpolation of the slice "
+                     "regions, recon3d.field); nothing to compare")
+        (stage / "table.txt").write_text("\n".join(lines) + "\n")
+        for p in sorted(stage.iterdir()):
+            os.chmod(p, 0o644)
+            os.replace(p, out / p.name)
+        stage.rmdir()
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    return lines

@@ -1,0 +1,100 @@
+"""The logic and charts of ``recon3d bench`` on hand-made rows (the sweeps themselves run in bench)."""
+import csv
+import math
+
+import numpy as np
+import pytest
+
+from bench.baseline import equal_coverage
+from bench.charts import baseline_chart, pareto_chart, stability_chart
+from bench.pareto import FULL, QUICK, adaptive_summary, pareto_front
+from bench.run3d import write_csv
+from bench.stability import breaking_points
+
+
+def _p(case, method, slices, share, wall, cd, cov, f1=0.9, cpu=None, robot=100.0):
+    return {"case": case, "method": method, "slices": slices, "eps_share": share, "wall_s": wall,
+            "cpu_s": cpu or wall, "chamfer_l1_diag": cd, "coverage": cov, "fscore_1": f1,
+            "robot_time_s": robot}
+
+
+PARETO = [_p("a", "uniform", 4, 0.01, 1.0, 3e-3, 0.98), _p("a", "uniform", 8, 0.01, 2.0, 1e-3, 0.99),
+          _p("a", "uniform", 8, 0.005, 4.0, 2e-3, 1.0), _p("b", "uniform", 4, 0.01, 9.0, 5e-3, 0.9),
+          _p("a", "adaptive", 5, 0.01, 1.5, 1e-3, 0.99)]
+
+
+def test_pareto_front_is_per_case_and_per_objective():
+    assert pareto_front(PARETO).tolist() == [True, False, False, True, True]
+    assert pareto_front(PARETO, y="coverage", lower_is_better=False).tolist() == [
+        True, False, True, True, True]
+
+
+def test_adaptive_summary_compares_with_the_uniform_run_at_max_slices():
+    plan = {"auto_max": 8, "auto_share": 0.01}
+    (row,) = adaptive_summary(PARETO, plan)
+    assert row["case"] == "a" and row["uniform_slices"] == 8 and row["adaptive_slices"] == 5
+    assert row["time_ratio"] == pytest.approx(0.75) and not row["target_met"]  # 5 > 8 / 2
+
+
+@pytest.mark.parametrize("plan", [pytest.param(FULL, id="full"), pytest.param(QUICK, id="quick")])
+def test_each_sweep_has_the_uniform_run_its_adaptive_run_is_compared_with(plan):
+    rows = [_p(c, "uniform", n, e, 1.0, 1e-3, 1.0) for c in ("a",) for n in plan["slices"]
+            for e in plan["eps_shares"]] + [_p("a", "adaptive", 3, plan["auto_share"], 1, 1e-3, 1)]
+    assert len(plan["eps_shares"]) >= 4 and len(plan["slices"]) >= 4 and len(plan["scenes"]) >= 4
+    (row,) = adaptive_summary(rows, plan)  # empty when no uniform run matches
+    assert row["uniform_slices"] == plan["auto_max"]
+
+
+def _b(method, cov, motions, path, dirs=0, sp=0.0):
+    return {"case": "c", "method": method, "coverage": cov, "motions": motions,
+            "joint_path": path, "robot_time_s": path / 20 + 0.2 * motions, "directions": dirs,
+            "spacing_eps": sp}
+
+
+def test_equal_coverage_takes_the_cheapest_finger_density_that_covers_as_much():
+    rows = [_b("pulling", 0.99, 100, 1000), _b("finger", 0.95, 50, 500, 8, 2),
+            _b("finger", 0.995, 1000, 20000, 32, 0.5), _b("finger", 0.999, 4000, 80000, 64, 0.25)]
+    (r,) = equal_coverage(rows)
+    assert r["reached"] and r["finger_density"] == "32 dirs x 0.5 eps"
+    assert r["robot_time_ratio"] == pytest.approx((1000 + 200) / (50 + 20))
+    assert r["motions_ratio"] == pytest.approx(10.0)
+    (r,) = equal_coverage([_b("pulling", 1.0, 100, 1000)] + rows[1:3])
+    assert not r["reached"] and r["finger_coverage"] == 0.995
+
+
+def _s(value, method, cov, crashed=False, hit=False):
+    return {"factor": "f", "value": value, "method": method, "coverage": cov, "fscore_1": np.nan,
+            "crashed": crashed, "error": "Boom: x" if crashed else "", "budget_hit": hit,
+            "eps": 1.0, "edge": 1.0}
+
+
+def test_breaking_points_crash_budget_and_drop():
+    rows = [_s(1, "m1", 1.0), _s(2, "m1", 0.99), _s(3, "m1", np.nan, crashed=True),
+            _s(1, "m2", 1.0), _s(2, "m2", 0.9), _s(1, "m3", 1.0), _s(2, "m3", 1.0, hit=True),
+            _s(1, "m4", 1.0), _s(2, "m4", 0.97)]
+    got = {b["method"]: (b["breaks_at"], b["why"]) for b in breaking_points(rows)}
+    assert got["m1"][0] == 3 and got["m1"][1].startswith("crash")
+    assert got["m2"][0] == 2 and "coverage" in got["m2"][1]
+    assert got["m3"] == (2, "budget hit")
+    assert got["m4"] == (None, "")
+
+
+def test_write_csv_leaves_nan_empty(tmp_path):
+    write_csv(tmp_path / "x.csv", [{"a": 1, "b": math.nan}, {"a": 2, "c": "z"}])
+    rows = list(csv.DictReader(open(tmp_path / "x.csv")))
+    assert rows == [{"a": "1", "b": "", "c": ""}, {"a": "2", "b": "", "c": "z"}]
+
+
+def test_charts_write_pngs(tmp_path):
+    import matplotlib.image as mpimg
+
+    fronts = {k: pareto_front(PARETO, y=k, lower_is_better=k == "chamfer_l1_diag")
+              for k in ("chamfer_l1_diag", "fscore_1", "coverage")}
+    pareto_chart(PARETO, fronts, tmp_path / "p.png")
+    rows = [_b("pulling", 0.99, 100, 1000), _b("finger", 0.95, 50, 500, 8, 2)]
+    baseline_chart(rows, tmp_path / "b.png")
+    srows = [_s(1e-3, "m1", 1.0), _s(1e-9, "m1", np.nan, crashed=True)]
+    stability_chart(srows, breaking_points(srows), tmp_path / "s.png")
+    for name, width in (("p.png", 1800), ("b.png", 1000), ("s.png", 1400)):
+        img = mpimg.imread(tmp_path / name)
+        assert img.shape[1] >= width and img.std() > 0.01

@@ -1,0 +1,118 @@
+"""What must hold where the methods are pushed to break (the curves are in ``recon3d bench``).
+
+Termination, no crash, a clear error: planes a hair above a vertex and a
+face with no nudge (every backend), contact noise up to eps, eps below the
+mesh's own edge length, islands and holes, open and self-intersecting meshes.
+"""
+import numpy as np
+import pytest
+import trimesh
+
+import meshes
+import recon3d
+import slicer
+from bench.cases import workspace
+from bench.stability import NoisyContact
+from core2d import sense_slice
+from recon3d.cli import main
+
+
+def _step_top_slice(delta):
+    mesh = meshes.load("stepped_pyramid")
+    z = np.unique(np.round(mesh.vertices[:, 2], 9))
+    h = z[len(z) // 2]
+    diag = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
+    (s,) = slicer.slice_mesh(mesh, "z", offsets=[h + delta * diag], nudge=False)
+    return s, diag
+
+
+@pytest.mark.parametrize("backend", ["embree", "exact", "trimesh"])
+def test_plane_1e9_above_a_face_and_its_vertices_senses_without_nudge(backend):
+    s, diag = _step_top_slice(1e-9)
+    assert s.plane.nudge == 0.0 and len(s.loops) == 1
+    eps = diag / 40
+    res = sense_slice(s.contact(backend), workspace(s, eps), eps, max_motions=3000)
+    assert res.w1 and res.stats.motions <= 3000 + 50 and res.stats.pushes == 0
+
+
+@pytest.mark.parametrize("method", ["pulling", "finger"])
+def test_contact_noise_of_eps_ends_within_the_budget(method):
+    mesh = meshes.load("fig18_overhangs")
+    s = slicer.slice_mesh(mesh, "z", count=3)[1]
+    eps = s.scale / 40
+    noisy = NoisyContact(s.contact("embree"), eps, seed=1)
+    res = sense_slice(noisy, workspace(s, eps), eps, method=method, max_motions=800)
+    assert res.stats.motions <= 800 + 50
+    assert res.stats.budget_hit or not res.unknown
+
+
+def test_noisy_contact_moves_points_by_sigma_and_keeps_distances_on_the_ray():
+    loops = [np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)]
+    inner = slicer.ExactContact(loops)
+    o = np.tile([[-5.0, 5.0]], (4000, 1))
+    d = np.tile([[1.0, 0.0]], (4000, 1))
+    d0, p0, _ = NoisyContact(inner, 0.0).cast(o, d, 50.0)
+    assert np.allclose(d0, 5.0) and np.allclose(p0, [0.0, 5.0])
+    d1, p1, _ = NoisyContact(inner, 0.1, seed=3).cast(o, d, 50.0)
+    assert abs(np.std(p1[:, 1]) - 0.1) < 0.01 and abs(np.std(p1[:, 0]) - 0.1) < 0.01
+    assert np.allclose(d1, p1[:, 0] + 5.0)  # distance = the noisy point along the ray
+
+
+def test_eps_below_the_mesh_edge_length_ends():
+    mesh = meshes.load("bowl", resolution=8)
+    s = slicer.slice_mesh(mesh, "z", count=3)[1]
+    eps = float(mesh.edges_unique_length.mean()) / 8
+    res = sense_slice(s.contact("embree"), workspace(s, eps), eps, max_motions=1500)
+    assert res.stats.motions <= 1500 + 50 and res.w1
+
+
+@pytest.mark.parametrize("scene", ["twin_posts", "bored_block"])
+def test_islands_and_holes_end_and_report(scene):
+    s = slicer.slice_mesh(meshes.load(scene), "z", count=3)[1]
+    assert len(s.loops) >= 2  # several objects, or an object with a hole
+    eps = s.scale / 50
+    for method in ("pulling", "finger"):
+        res = sense_slice(s.contact("embree"), workspace(s, eps), eps, method=method,
+                          max_motions=4000)
+        assert res.w1 or res.w2
+
+
+def test_open_mesh_runs_with_a_warning_and_a_watertight_surface():
+    mesh = meshes.load("fig18_overhangs")
+    keep = np.random.default_rng(0).random(len(mesh.faces)) > 0.02
+    holey = trimesh.Trimesh(mesh.vertices, mesh.faces[keep], process=False)
+    assert not holey.is_watertight
+    with pytest.warns(UserWarning, match="watertight"):
+        res = recon3d.run(holey, slices=2, eps=res_eps(holey), jobs=1, max_motions=3000)
+    assert res.surface.is_watertight and len(res.slices) == 2
+
+
+def test_self_intersecting_mesh_runs():
+    a = trimesh.creation.box(extents=[40, 40, 40])
+    b = trimesh.creation.box(extents=[40, 40, 40]).apply_translation([20, 10, 5])
+    both = trimesh.util.concatenate([a, b])
+    assert both.is_watertight and both.body_count == 2  # closed, but the bodies overlap
+    res = recon3d.run(both, slices=2, eps=res_eps(both), jobs=1, max_motions=3000)
+    assert res.metrics["total"]["surface"]["fscore"]["1%"] > 0.5
+
+
+def res_eps(mesh):
+    return float(np.linalg.norm(np.ptp(mesh.bounds, axis=0))) / 40
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["run", "bowl", "--out", "{d}", "--slices", "many"], "integer or 'auto'"),
+    (["run", "bowl", "--out", "{d}", "--slices", "auto", "--max-slices", "2"], "at least 3"),
+    (["run", "bowl", "--out", "{d}", "--slices", "auto", "--slice-tol", "0.7"], "--slice-tol"),
+    (["bench", "--out", "{d}", "--parts", "speed"], "--parts"),
+    (["bench", "--out", "{f}"], "--out"),
+    (["bench", "--out", "{d}", "--workers", "0"], "--workers"),
+])
+def test_bad_bench_and_auto_flags_are_one_line_exit_2(tmp_path, capsys, argv, message):
+    f = tmp_path / "file"
+    f.write_text("x")
+    argv = [a.format(d=tmp_path / "out", f=f) for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("recon3d: error:") and message in err[0]
+    assert not (tmp_path / "out").exists()

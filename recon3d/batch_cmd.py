@@ -74,7 +74,7 @@ class _Surface:
 def batch_command(args) -> int:
     from recon3d.batch import read_manifest, run_job
     from recon3d.checks import InputError, at_least, check_out_dir
-    from recon3d.cli import UsageError
+    from recon3d.usage import UsageError
     from recon3d.distributed import run_tasks
 
     try:

@@ -1,4 +1,4 @@
-"""``recon3d bench --out DIR [--quick] [--scheduler ADDRESS]``: the 3D benchmark (bench.run3d)."""
+"""``recon3d bench --out DIR [--quick] [--scheduler ADDRESS]``: the 3D benchmark (recon3d.benchmark.run3d)."""
 from __future__ import annotations
 
 __all__ = ["add_bench_parser", "bench_command"]
@@ -27,13 +27,9 @@ def add_bench_parser(sub) -> None:
 
 def bench_command(args) -> int:
     from recon3d.checks import InputError, at_least, check_out_dir
-    from recon3d.cli import UsageError
+    from recon3d.usage import UsageError
 
-    try:
-        from bench.run3d import PARTS, run_bench
-    except ImportError as exc:
-        raise UsageError(f"the benchmark modules are not installed ({exc}); "
-                         f"pip install -e . in a checkout") from None
+    from recon3d.benchmark.run3d import PARTS, run_bench
     parts = PARTS if not args.parts else tuple(p.strip() for p in args.parts.split(","))
     try:
         bad = [p for p in parts if p not in PARTS]

@@ -11,18 +11,11 @@ import re
 import sys
 import warnings
 
+from recon3d.usage import UsageError, warn
+
 __all__ = ["main", "UsageError", "warn", "build_parser"]
 
 _NEGATIVE_AXIS = re.compile(r"^-[^-]")
-
-
-class UsageError(Exception):
-    """Bad input from the user: reported as one line, exit status 2."""
-
-
-def warn(message: str) -> None:
-    """Print one warning line on stderr."""
-    print(f"recon3d: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 class _Parser(argparse.ArgumentParser):

@@ -83,7 +83,7 @@ def _progress_bar(total, name, quiet):
 def run_command(args) -> int:
     from recon3d.api import execute, load_input, make_config, validate
     from recon3d.checks import InputError, check_out_dir
-    from recon3d.cli import UsageError, warn
+    from recon3d.usage import UsageError, warn
     from recon3d.summary import summary_lines
 
     try:

@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from bench.baseline import equal_coverage
-from bench.charts import baseline_chart, pareto_chart, stability_chart
-from bench.pareto import FULL, QUICK, adaptive_summary, pareto_front
-from bench.run3d import write_csv
-from bench.stability import breaking_points
+from recon3d.benchmark.baseline import equal_coverage
+from recon3d.benchmark.charts import baseline_chart, pareto_chart, stability_chart
+from recon3d.benchmark.pareto import FULL, QUICK, adaptive_summary, pareto_front
+from recon3d.benchmark.run3d import write_csv
+from recon3d.benchmark.stability import breaking_points
 
 
 def _p(case, method, slices, share, wall, cd, cov, f1=0.9, cpu=None, robot=100.0):

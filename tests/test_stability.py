@@ -11,8 +11,8 @@ import trimesh
 import meshes
 import recon3d
 import slicer
-from bench.cases import workspace
-from bench.stability import NoisyContact
+from recon3d.benchmark.cases import workspace
+from recon3d.benchmark.stability import NoisyContact
 from core2d import sense_slice
 from recon3d.cli import main
 

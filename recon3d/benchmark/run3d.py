@@ -29,7 +29,7 @@ def dispatch(task: dict) -> dict:
     import logging
     import time
 
-    from bench import backends, baseline, pareto, stability
+    from recon3d.benchmark import backends, baseline, pareto, stability
 
     logging.getLogger("slicer").setLevel(logging.ERROR)  # planes near vertices: on purpose
     fn = {"pareto": pareto.run_case, "backends": backends.compare_slice,
@@ -45,7 +45,7 @@ def dispatch(task: dict) -> dict:
 
 
 def _tasks(parts, quick):
-    from bench import backends, baseline, pareto, stability
+    from recon3d.benchmark import backends, baseline, pareto, stability
 
     plan = pareto.QUICK if quick else pareto.FULL
     made = {"pareto": lambda: pareto.pareto_tasks(plan),
@@ -91,7 +91,7 @@ def _table(lines, head, rows, keys, fmts):
 def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PARTS,
               quiet: bool = False) -> list[str]:
     """Run the parts, write their files into ``out``; the printed table's lines."""
-    from bench import backends, baseline, charts, pareto, stability
+    from recon3d.benchmark import backends, baseline, charts, pareto, stability
     from recon3d.distributed import run_tasks
 
     tasks, plan = _tasks(parts, quick)

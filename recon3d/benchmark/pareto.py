@@ -29,7 +29,7 @@ full sweep is sized to finish within ~45 minutes on 2 shared cores)."""
 
 def pareto_tasks(plan: dict) -> list[dict]:
     """Every (case, slices, eps share) of ``plan`` plus one adaptive run per case."""
-    from bench.cases import case_list
+    from recon3d.benchmark.cases import case_list
 
     tasks = []
     for name, source in case_list(plan["scenes"], plan["real"]):
@@ -46,7 +46,7 @@ def run_case(task: dict) -> dict:
     """Run one task; its row of ``pareto.csv``."""
     import meshes
     import recon3d
-    from bench.cases import diagonal
+    from recon3d.benchmark.cases import diagonal
 
     mesh = meshes.load(task["source"])
     diag = diagonal(mesh)

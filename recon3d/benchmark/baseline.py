@@ -24,7 +24,7 @@ in each, so the cheapest density reaching a coverage is found within 1.5x
 
 def baseline_tasks(quick: bool) -> list[dict]:
     """Middle z-slices of the scenes that satisfy the paper's assumptions (and real meshes)."""
-    from bench.cases import case_list
+    from recon3d.benchmark.cases import case_list
 
     scenes = ("fig17_pocket", "fig18_overhangs", "stepped_pyramid") if quick else (
         "fig17_pocket", "fig18_overhangs", "stepped_pyramid", "mushroom", "gear", "dovetail")
@@ -47,7 +47,7 @@ def _row(case, method, res, loops, eps, **extra):
 
 def compare_probing(task: dict) -> list[dict]:
     """Pulling once and finger probing at every density on one slice."""
-    from bench.cases import middle_slice, workspace
+    from recon3d.benchmark.cases import middle_slice, workspace
     from core2d import sense_slice
 
     _, diag, slc = middle_slice(task["source"])

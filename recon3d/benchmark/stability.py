@@ -91,7 +91,7 @@ def stability_tasks(quick: bool) -> list[dict]:
 
 def _sense(slc, eps, method, backend, sigma=0.0, max_motions=20000):
     """Sense one slice; a row fragment (crash caught and reported)."""
-    from bench.cases import workspace
+    from recon3d.benchmark.cases import workspace
     from core2d import sense_slice
     from core2d.truth.metrics import slice_metrics
 
@@ -180,7 +180,7 @@ def _slices(task, mesh, diag):
 
 def run_factor(task: dict) -> list[dict]:
     """All methods at one (factor, value); one row per (method, slice)."""
-    from bench.cases import diagonal
+    from recon3d.benchmark.cases import diagonal
 
     quick, f, v = task["quick"], task["factor"], task["value"]
     mesh = _mesh_for(task)

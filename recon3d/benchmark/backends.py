@@ -17,7 +17,7 @@ BACKEND_NAMES = ("embree", "exact", "trimesh")
 
 def backend_tasks(quick: bool) -> list[dict]:
     """Middle z-slices of a few scenes (and Spot when present)."""
-    from bench.cases import case_list
+    from recon3d.benchmark.cases import case_list
 
     scenes = ("fig18_overhangs", "stepped_pyramid") if quick else (
         "fig18_overhangs", "stepped_pyramid", "mushroom", "gear")
@@ -58,7 +58,7 @@ def compare_slice(task: dict) -> list[dict]:
     """Sense one slice with every backend; one row per backend."""
     import time
 
-    from bench.cases import middle_slice, workspace
+    from recon3d.benchmark.cases import middle_slice, workspace
     from core2d import sense_slice
 
     mesh, diag, slc = middle_slice(task["source"])

@@ -11,7 +11,7 @@ import numpy as np
 
 __all__ = ["SHARED", "REAL", "case_list", "diagonal", "middle_slice", "workspace"]
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
+SHARED = Path(__file__).resolve().parents[3] / "shared" / "meshes"
 REAL = ("mujoco_spot.ply", "trimesh_featuretype.stl")
 
 

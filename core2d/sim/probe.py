@@ -61,6 +61,7 @@ class Probe:
         self.tip_zone = self.eps / 2.0
         self.stats = SenseStats()
         self._offset_cache = {}
+        self._fused_fan = getattr(contact, "fan", None)  # optional (Embree backend)
         self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
         self.theta = -np.pi / 2
 
@@ -85,7 +86,18 @@ class Probe:
         return d, p
 
     def _fan(self, joint, angles):
-        """Rays from ``joint`` at ``angles`` over the probe length."""
+        """Rays from ``joint`` at ``angles`` over the probe length (through the
+        contact model's fused ``fan`` when it has one: the same rays)."""
+        fan = self._fused_fan
+        if fan is not None:
+            angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+            t0 = time.perf_counter()
+            d, p = fan(joint, angles, self.length)
+            stats = self.stats
+            stats.cast_seconds += time.perf_counter() - t0
+            stats.casts += 1
+            stats.rays += len(angles)
+            return d, p
         dirs = unit(angles).reshape(-1, 2)
         origins = np.empty_like(dirs)
         origins[:] = joint

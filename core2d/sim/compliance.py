@@ -41,19 +41,15 @@ def _settle(probe, joint, theta, rot_dir):
     needed depends on that first ray, and a window of 8 rays costs Embree
     less than a call.
     """
-    along, back = probe._offsets_head(MAX_SETTLE), probe._offsets_head(_MAX_YIELD)
-    angles = np.empty(1 + len(along) + len(back))
-    angles[0] = theta
-    angles[1:1 + len(along)] = theta + rot_dir * along
-    angles[1 + len(along):] = theta + -rot_dir * back
-    d, p = probe._fan(joint, angles)
+    offsets, n_along, _ = probe._settle_offsets(MAX_SETTLE, _MAX_YIELD)
+    d, p = probe._fan(joint, theta + rot_dir * offsets)  # theta, along, then back
     if d[0] == np.inf:
-        first = (d[1:1 + len(along)], p[1:1 + len(along)])
+        first = (d[1:1 + n_along], p[1:1 + n_along])
         found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True, first=first)
         if found is None:
             return "lost", theta + rot_dir * MAX_SETTLE, None
     else:
-        first = (d[1 + len(along):], p[1 + len(along):])
+        first = (d[1 + n_along:], p[1 + n_along:])
         found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False, first=first)
         if found is None:
             return "jammed", theta, None

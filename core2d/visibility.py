@@ -127,9 +127,9 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         atol, none = float(atol), np.zeros((0, 2))
         k = _kept_pairs(p, tx, ty, a, b, atol, np.zeros(0, np.int64), none, none)
         row, y, x = np.empty(k, np.int64), np.empty((k, 2)), np.empty((k, 2))
-        _kept_pairs(p, tx, ty, a, b, atol, row, y, x)
+        k = _kept_pairs(p, tx, ty, a, b, atol, row, y, x)
         width, psi = np.empty(c), np.empty(c)
-        _row_gaps(row, -np.arctan2(y, x), width, psi)  # numpy's arctan2, as below
+        _row_gaps(row[:k], -np.arctan2(y[:k], x[:k]), width, psi)  # numpy's, as below
         angle = np.arctan2(ty, tx) - psi
         return width, (angle + np.pi) % (2 * np.pi) - np.pi
     tx = np.where(inner, tg[:, 0], 1.0)
@@ -196,9 +196,10 @@ def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cov
     """(point, segment) pairs of :func:`free_gaps` for inner points, culled
     as the vectorised path does (same float64 operations), in its order.
 
-    With empty outputs it only counts; otherwise it writes the row of each
-    pair and the ``arctan2`` arguments of both segment ends (``out_y``,
-    ``out_x`` : (k, 2)). Returns the number of pairs.
+    With empty outputs it only counts the pairs the half-plane test keeps
+    (an upper bound); otherwise it writes the row of each pair and the
+    ``arctan2`` arguments of both segment ends (``out_y``, ``out_x`` :
+    (k, 2)). Returns the number of pairs.
     """
     fill = out_row.shape[0] > 0
     m = 0
@@ -209,6 +210,9 @@ def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cov
             ax, ay, bx, by = a[j, 0], a[j, 1], b[j, 0], b[j, 1]
             if not (txr * ay - tyr * ax - k < 0 or txr * by - tyr * bx - k < 0):
                 continue
+            if not fill:
+                m += 1
+                continue
             vax, vay, vbx, vby = ax - px, ay - py, bx - px, by - py
             ex, ey = vbx - vax, vby - vay
             t = -(vax * ex + vay * ey) / (ex * ex + ey * ey)
@@ -217,12 +221,11 @@ def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cov
                 t = 0.0
             if not math.hypot(vax + t * ex, vay + t * ey) > atol:
                 continue
-            if fill:
-                out_row[m] = r
-                out_y[m, 0] = txr * vay - tyr * vax
-                out_x[m, 0] = txr * vax + tyr * vay
-                out_y[m, 1] = txr * vby - tyr * vbx
-                out_x[m, 1] = txr * vbx + tyr * vby
+            out_row[m] = r
+            out_y[m, 0] = txr * vay - tyr * vax
+            out_x[m, 0] = txr * vax + tyr * vay
+            out_y[m, 1] = txr * vby - tyr * vbx
+            out_x[m, 1] = txr * vbx + tyr * vby
             m += 1
     return m
 

@@ -60,7 +60,11 @@ def _settle(probe, joint, theta, rot_dir):
 def _segment_distance(point, a, b) -> float:
     """Distance from ``point`` to segment ab (scalar math: hot path)."""
     px, py, ax, ay = float(point[0]), float(point[1]), float(a[0]), float(a[1])
-    abx, aby = float(b[0]) - ax, float(b[1]) - ay
+    return _distance_xy(px, py, ax, ay, float(b[0]) - ax, float(b[1]) - ay)
+
+
+def _distance_xy(px, py, ax, ay, abx, aby) -> float:
+    """Distance from (px, py) to the segment from (ax, ay) along (abx, aby)."""
     den = abx * abx + aby * aby
     s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
     return math.hypot(ax + s * abx - px, ay + s * aby - py)
@@ -107,6 +111,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     step = delta0
     travelled = 0.0
     stop = None if stop_at is None else np.asarray(stop_at, float)
+    sx, sy = (0.0, 0.0) if stop is None else (float(stop[0]), float(stop[1]))
     leave = None if leave_at is None else np.asarray(leave_at, float)
     first = probe.sense()
     last = first.tip_contact
@@ -118,9 +123,10 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     prev_disp = None
     for _ in range(max_steps):
         c, s = math.cos(probe.theta), math.sin(probe.theta)
+        jx, jy = float(probe.joint[0]), float(probe.joint[1])
         if stop is not None:
-            jx, jy = float(probe.joint[0]), float(probe.joint[1])
-            if _segment_distance(stop, (jx, jy), (jx + L * c, jy + L * s)) <= near:
+            # the probe's segment: (jx + L c) - jx as _segment_distance computes it
+            if _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx, (jy + L * s) - jy) <= near:
                 event = "reached-body"  # a part of the probe other than the tip
                 break
         if vx * c + vy * s > 0:
@@ -133,7 +139,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             event = "done"
             break
         h = min(step, max_dist - travelled)
-        joint = probe.joint + h * v
+        joint = np.array((jx + h * vx, jy + h * vy))  # probe.joint + h v
         status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
         sliding = status == "ok" and contact.face == TIP and last is not None
         if sliding:
@@ -154,7 +160,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         if status == "jammed":
             event = "blocked"
             break
-        before = (probe.joint, np.array((c, s)))
+        before = (probe.joint, (c, s))
         probe.stats.joint_path += h
         travelled += h
         probe.joint, probe.theta = joint, theta
@@ -177,7 +183,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         trace.append(contact.point)
         step = min(delta0, 2 * step)
     kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
-              before_direction=before[1])
+              before_direction=np.array(before[1], dtype=float))
     if primary is not None:
         kw["primary"] = primary
     return probe.sense(event, **kw)

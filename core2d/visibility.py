@@ -236,6 +236,8 @@ def _row_gaps(row, ps, width, psi):  # pragma: no cover - compiled
     pairs ``row`` (ascending): :func:`segmented_gap`'s rule, row by row."""
     st = np.empty(row.shape[0])
     en = np.empty(row.shape[0])
+    head = np.empty(row.shape[0] + 1, np.int64)
+    link = np.empty(row.shape[0], np.int64)
     q0 = 0
     for r in range(width.shape[0]):
         m = 0
@@ -253,7 +255,7 @@ def _row_gaps(row, ps, width, psi):  # pragma: no cover - compiled
         if m == 0:
             width[r], psi[r] = np.pi, np.pi / 2
             continue
-        order = np.argsort(st[:m])
+        order = _order(st, m, head, link)
         lead = min(st[order[0]], np.pi)
         acc = -np.inf
         best, mid = lead, lead / 2
@@ -273,3 +275,31 @@ def _row_gaps(row, ps, width, psi):  # pragma: no cover - compiled
             best, mid = gap_in, mid_in
         width[r] = min(max(best, 0.0), np.pi)
         psi[r] = mid
+
+
+@numba.njit(cache=True, nogil=True)
+def _order(st, m, head, link):  # pragma: no cover - compiled
+    """Indices sorting ``st[:m]`` (values in [0, pi]) ascending: bucket sort
+    into m buckets, each bucket sorted by insertion (ties in any order)."""
+    for q in range(m + 1):
+        head[q] = -1
+    scale = m / np.pi
+    for i in range(m - 1, -1, -1):  # lists keep the original order
+        q = min(int(st[i] * scale), m)
+        link[i] = head[q]
+        head[q] = i
+    out = np.empty(m, np.int64)
+    n = 0
+    for q in range(m + 1):
+        first = n
+        i = head[q]
+        while i >= 0:
+            v = st[i]
+            k = n
+            while k > first and st[out[k - 1]] > v:
+                out[k] = out[k - 1]
+                k -= 1
+            out[k] = i
+            n += 1
+            i = link[i]
+    return out

@@ -17,6 +17,12 @@ at its middle.
 Angles ``psi`` are measured clockwise from ``t`` (inner points) or from +x
 shifted by pi (full circle); :func:`free_gaps` returns world angles.
 
+Inner points without ``own`` (the planner's lid question, hundreds of
+points against thousands of recorded segments) take a compiled path
+(numba): the same culling, arcs and gap rule in the same float64
+operations, numpy's ``arctan2`` in between, without the (points x
+segments) temporaries; its answers are bit-identical (tested).
+
 Examples
 --------
 >>> seg_a, seg_b = np.array([[-1.0, 1.0]]), np.array([[2.0, 1.0]])  # a roof above
@@ -27,6 +33,9 @@ Examples
 """
 from __future__ import annotations
 
+import math
+
+import numba
 import numpy as np
 
 __all__ = ["free_gaps", "segmented_gap"]
@@ -113,6 +122,16 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
                            None if own is None else own[i:i + step], atol, chunk)
                  for i in range(0, c, step)]
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
+    if own is None and inner.all() and len(a):
+        tx, ty = np.ascontiguousarray(tg[:, 0]), np.ascontiguousarray(tg[:, 1])
+        atol, none = float(atol), np.zeros((0, 2))
+        k = _kept_pairs(p, tx, ty, a, b, atol, np.zeros(0, np.int64), none, none)
+        row, y, x = np.empty(k, np.int64), np.empty((k, 2)), np.empty((k, 2))
+        k = _kept_pairs(p, tx, ty, a, b, atol, row, y, x)
+        width, psi = np.empty(c), np.empty(c)
+        _row_gaps(row[:k], -np.arctan2(y[:k], x[:k]), width, psi)  # numpy's, as below
+        angle = np.arctan2(ty, tx) - psi
+        return width, (angle + np.pi) % (2 * np.pi) - np.pi
     tx = np.where(inner, tg[:, 0], 1.0)
     ty = np.where(inner, tg[:, 1], 0.0)
     # cross(t, v) >= 0 at both ends (v = end - p): the segment lies in the
@@ -169,3 +188,118 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         psi[~inner] = shifted - np.pi
     angle = np.arctan2(ty, tx) - psi
     return width, (angle + np.pi) % (2 * np.pi) - np.pi
+
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cover
+    """(point, segment) pairs of :func:`free_gaps` for inner points, culled
+    as the vectorised path does (same float64 operations), in its order.
+
+    With empty outputs it only counts the pairs the half-plane test keeps
+    (an upper bound); otherwise it writes the row of each pair and the
+    ``arctan2`` arguments of both segment ends (``out_y``, ``out_x`` :
+    (k, 2)). Returns the number of pairs.
+    """
+    fill = out_row.shape[0] > 0
+    m = 0
+    for r in range(p.shape[0]):
+        px, py, txr, tyr = p[r, 0], p[r, 1], tx[r], ty[r]
+        k = txr * py - tyr * px
+        for j in range(a.shape[0]):
+            ax, ay, bx, by = a[j, 0], a[j, 1], b[j, 0], b[j, 1]
+            if not (txr * ay - tyr * ax - k < 0 or txr * by - tyr * bx - k < 0):
+                continue
+            if not fill:
+                m += 1
+                continue
+            vax, vay, vbx, vby = ax - px, ay - py, bx - px, by - py
+            ex, ey = vbx - vax, vby - vay
+            t = -(vax * ex + vay * ey) / (ex * ex + ey * ey)
+            t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+            if t != t:  # nan (zero-length segment)
+                t = 0.0
+            if not math.hypot(vax + t * ex, vay + t * ey) > atol:
+                continue
+            out_row[m] = r
+            out_y[m, 0] = txr * vay - tyr * vax
+            out_x[m, 0] = txr * vax + tyr * vay
+            out_y[m, 1] = txr * vby - tyr * vbx
+            out_x[m, 1] = txr * vbx + tyr * vby
+            m += 1
+    return m
+
+
+@numba.njit(cache=True, nogil=True)
+def _row_gaps(row, ps, width, psi):  # pragma: no cover - compiled
+    """Widest gap in [0, pi] per point from the arcs ``ps`` (k, 2) of the
+    pairs ``row`` (ascending): :func:`segmented_gap`'s rule, row by row."""
+    st = np.empty(row.shape[0])
+    en = np.empty(row.shape[0])
+    head = np.empty(row.shape[0] + 1, np.int64)
+    link = np.empty(row.shape[0], np.int64)
+    q0 = 0
+    for r in range(width.shape[0]):
+        m = 0
+        while q0 < row.shape[0] and row[q0] == r:
+            lo, hi = min(ps[q0, 0], ps[q0, 1]), max(ps[q0, 0], ps[q0, 1])
+            if hi - lo > np.pi:  # the short arc crosses the +-pi cut
+                s0, e0 = max(hi, 0.0), np.pi
+            else:
+                s0, e0 = max(lo, 0.0), hi
+            if e0 > s0:
+                st[m] = s0
+                en[m] = e0
+                m += 1
+            q0 += 1
+        if m == 0:
+            width[r], psi[r] = np.pi, np.pi / 2
+            continue
+        order = _order(st, m, head, link)
+        lead = min(st[order[0]], np.pi)
+        acc = -np.inf
+        best, mid = lead, lead / 2
+        gap_in, mid_in = -np.inf, 0.0
+        for q in range(m):
+            i = order[q]
+            if q > 0:
+                g = min(st[i], np.pi) - max(acc, 0.0)
+                if g > gap_in:
+                    gap_in, mid_in = g, max(acc, 0.0) + g / 2
+            acc = max(acc, en[i])
+        last = max(acc, 0.0)
+        trail = np.pi - last
+        if trail > best:
+            best, mid = trail, last + trail / 2
+        if gap_in > best:
+            best, mid = gap_in, mid_in
+        width[r] = min(max(best, 0.0), np.pi)
+        psi[r] = mid
+
+
+@numba.njit(cache=True, nogil=True)
+def _order(st, m, head, link):  # pragma: no cover - compiled
+    """Indices sorting ``st[:m]`` (values in [0, pi]) ascending: bucket sort
+    into m buckets, each bucket sorted by insertion (ties in any order)."""
+    for q in range(m + 1):
+        head[q] = -1
+    scale = m / np.pi
+    for i in range(m - 1, -1, -1):  # lists keep the original order
+        q = min(int(st[i] * scale), m)
+        link[i] = head[q]
+        head[q] = i
+    out = np.empty(m, np.int64)
+    n = 0
+    for q in range(m + 1):
+        first = n
+        i = head[q]
+        while i >= 0:
+            v = st[i]
+            k = n
+            while k > first and st[out[k - 1]] > v:
+                out[k] = out[k - 1]
+                k -= 1
+            out[k] = i
+            n += 1
+            i = link[i]
+    return out

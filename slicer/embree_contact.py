@@ -31,7 +31,7 @@ import numpy as np
 from embreex import mesh_construction, rtcore_scene
 
 from slicer.degenerate import DEGENERATE_TOL, mesh_scale
-from slicer.refine import NO_LIMITS, fill_rays, refine_hits
+from slicer.refine import NO_LIMITS, fill_fan, fill_rays, refine_hits
 
 __all__ = ["EmbreeContact", "crossing_faces", "section_segments", "SMALL_BATCH"]
 
@@ -193,8 +193,50 @@ class EmbreeContact:
         cap = max(n, 2 * self._cap)
         self._o32 = np.zeros((cap, 3), np.float32)
         self._d32 = np.zeros((cap, 3), np.float32)
+        self._o64 = np.zeros((cap, 2))
+        self._d64 = np.zeros((cap, 2))
         self._cap = cap
         self._views = {}  # n -> the first n rows of the buffers (Embree reads whole arrays)
+        self._fan_views = {}  # n -> the first n rows of the float64 fan buffers
+
+    def fan(self, origin, angles, max_dist):
+        """``cast`` of the rays from one ``origin`` at ``angles``, fused.
+
+        The same rays as ``cast(origin repeated, (cos, sin) of angles,
+        max_dist)`` and the same answer (same kernels), built in compiled
+        code: a probe swing casts thousands of such small fans.
+
+        Parameters
+        ----------
+        origin : (2,) float
+        angles : (n,) float
+        max_dist : float
+
+        Returns
+        -------
+        distances : (n,) float
+        points : (n, 2) float
+        """
+        n = len(angles)
+        if n > SMALL_BATCH or n == 0 or self._scene is None:
+            dirs = np.empty((n, 2))
+            np.cos(angles, out=dirs[:, 0])
+            np.sin(angles, out=dirs[:, 1])
+            origins = np.empty_like(dirs)
+            origins[:] = origin
+            return self.cast(origins, dirs, max_dist)[:2]
+        views = self._views.get(n)
+        if views is None:
+            views = self._views[n] = (self._o32[:n], self._d32[:n])
+        rays = self._fan_views.get(n)
+        if rays is None:
+            rays = self._fan_views[n] = (self._o64[:n], self._d64[:n])
+        fill_fan(float(origin[0]), float(origin[1]), angles, rays[0], rays[1],
+                 self._o32, self._d32)
+        prim = self._scene.run(views[0], views[1], query="INTERSECT")
+        res = np.empty((n, 5))
+        refine_hits(self._table, prim, rays[0], rays[1], float(max_dist), NO_LIMITS, res)
+        return res[:, 0], res[:, 1:3]
 
     def cast(self, origins, dirs, max_dist):
         """First contour hit of each in-plane ray (one Embree call).

@@ -30,7 +30,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["fill_rays", "refine_hits", "NO_LIMITS"]
+__all__ = ["fill_rays", "fill_fan", "refine_hits", "NO_LIMITS"]
 
 NO_LIMITS = np.zeros(0)
 """Pass as ``limits`` when one ``max_dist`` holds for every ray."""
@@ -44,6 +44,24 @@ def fill_rays(origins, dirs, o32, d32):  # pragma: no cover - compiled
         o32[i, 1] = origins[i, 1]
         d32[i, 0] = dirs[i, 0]
         d32[i, 1] = dirs[i, 1]
+
+
+@numba.njit(cache=True, nogil=True)
+def fill_fan(jx, jy, angles, o64, d64, o32, d32):  # pragma: no cover - compiled
+    """Rays from ``(jx, jy)`` at ``angles`` (n,): unit directions ``(cos, sin)``
+    (libm, as numpy's) into the first n rows of (m, 2) float64 and (m, 3)
+    float32 buffers."""
+    for i in range(angles.shape[0]):
+        c = np.cos(angles[i])
+        s = np.sin(angles[i])
+        o64[i, 0] = jx
+        o64[i, 1] = jy
+        d64[i, 0] = c
+        d64[i, 1] = s
+        o32[i, 0] = jx
+        o32[i, 1] = jy
+        d32[i, 0] = c
+        d32[i, 1] = s
 
 
 @numba.njit(cache=True, nogil=True)

@@ -122,6 +122,24 @@ def test_cast_contract(n):
     assert np.all(np.einsum("ij,ij->i", nrm[hit], d[hit]) <= 0)
 
 
+@pytest.mark.parametrize("n", [1, 3, 17, ec_mod.SMALL_BATCH, ec_mod.SMALL_BATCH + 1, 300])
+def test_fan_is_cast_of_the_same_rays(n):
+    """The fused fan answers exactly what ``cast`` answers for its rays."""
+    slc = slice_mesh(meshes.load("fig17_pocket"), "z", count=1)[0]
+    c, r = slc.bounding_circle()
+    rng = np.random.default_rng(n)
+    model = slc.contact("embree")
+    for origin in (c + rng.uniform(-1.2 * r, 1.2 * r, 2), c + [0.0, 1.5 * r]):
+        angles = rng.uniform(-np.pi, np.pi, n)
+        dirs = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        want = model.cast(np.tile(origin, (n, 1)), dirs, 1.7 * r)[:2]
+        got = model.fan(origin, angles, 1.7 * r)
+        assert len(got) == 2
+        for x, y in zip(got, want):
+            np.testing.assert_array_equal(x, y)
+        assert np.isfinite(got[0]).any() or n < 3
+
+
 def test_small_and_vector_paths_agree(spot_slice, monkeypatch):
     rng = np.random.default_rng(3)
     c, r = spot_slice.bounding_circle()

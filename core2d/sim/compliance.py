@@ -41,19 +41,15 @@ def _settle(probe, joint, theta, rot_dir):
     needed depends on that first ray, and a window of 8 rays costs Embree
     less than a call.
     """
-    along, back = probe._offsets_head(MAX_SETTLE), probe._offsets_head(_MAX_YIELD)
-    angles = np.empty(1 + len(along) + len(back))
-    angles[0] = theta
-    angles[1:1 + len(along)] = theta + rot_dir * along
-    angles[1 + len(along):] = theta + -rot_dir * back
-    d, p = probe._fan(joint, angles)
+    offsets, n_along, _ = probe._settle_offsets(MAX_SETTLE, _MAX_YIELD)
+    d, p = probe._fan(joint, theta + rot_dir * offsets)  # theta, along, then back
     if d[0] == np.inf:
-        first = (d[1:1 + len(along)], p[1:1 + len(along)])
+        first = (d[1:1 + n_along], p[1:1 + n_along])
         found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True, first=first)
         if found is None:
             return "lost", theta + rot_dir * MAX_SETTLE, None
     else:
-        first = (d[1 + len(along):], p[1 + len(along):])
+        first = (d[1 + n_along:], p[1 + n_along:])
         found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False, first=first)
         if found is None:
             return "jammed", theta, None
@@ -64,7 +60,11 @@ def _settle(probe, joint, theta, rot_dir):
 def _segment_distance(point, a, b) -> float:
     """Distance from ``point`` to segment ab (scalar math: hot path)."""
     px, py, ax, ay = float(point[0]), float(point[1]), float(a[0]), float(a[1])
-    abx, aby = float(b[0]) - ax, float(b[1]) - ay
+    return _distance_xy(px, py, ax, ay, float(b[0]) - ax, float(b[1]) - ay)
+
+
+def _distance_xy(px, py, ax, ay, abx, aby) -> float:
+    """Distance from (px, py) to the segment from (ax, ay) along (abx, aby)."""
     den = abx * abx + aby * aby
     s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
     return math.hypot(ax + s * abx - px, ay + s * aby - py)
@@ -111,6 +111,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     step = delta0
     travelled = 0.0
     stop = None if stop_at is None else np.asarray(stop_at, float)
+    sx, sy = (0.0, 0.0) if stop is None else (float(stop[0]), float(stop[1]))
     leave = None if leave_at is None else np.asarray(leave_at, float)
     first = probe.sense()
     last = first.tip_contact
@@ -122,9 +123,10 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     prev_disp = None
     for _ in range(max_steps):
         c, s = math.cos(probe.theta), math.sin(probe.theta)
+        jx, jy = float(probe.joint[0]), float(probe.joint[1])
         if stop is not None:
-            jx, jy = float(probe.joint[0]), float(probe.joint[1])
-            if _segment_distance(stop, (jx, jy), (jx + L * c, jy + L * s)) <= near:
+            # the probe's segment: (jx + L c) - jx as _segment_distance computes it
+            if _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx, (jy + L * s) - jy) <= near:
                 event = "reached-body"  # a part of the probe other than the tip
                 break
         if vx * c + vy * s > 0:
@@ -137,7 +139,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             event = "done"
             break
         h = min(step, max_dist - travelled)
-        joint = probe.joint + h * v
+        joint = np.array((jx + h * vx, jy + h * vy))  # probe.joint + h v
         status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
         sliding = status == "ok" and contact.face == TIP and last is not None
         if sliding:
@@ -158,7 +160,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         if status == "jammed":
             event = "blocked"
             break
-        before = (probe.joint, np.array((c, s)))
+        before = (probe.joint, (c, s))
         probe.stats.joint_path += h
         travelled += h
         probe.joint, probe.theta = joint, theta
@@ -181,7 +183,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
         trace.append(contact.point)
         step = min(delta0, 2 * step)
     kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
-              before_direction=before[1])
+              before_direction=np.array(before[1], dtype=float))
     if primary is not None:
         kw["primary"] = primary
     return probe.sense(event, **kw)

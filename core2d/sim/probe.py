@@ -61,6 +61,7 @@ class Probe:
         self.tip_zone = self.eps / 2.0
         self.stats = SenseStats()
         self._offset_cache = {}
+        self._fused_fan = getattr(contact, "fan", None)  # optional (Embree backend)
         self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
         self.theta = -np.pi / 2
 
@@ -85,7 +86,18 @@ class Probe:
         return d, p
 
     def _fan(self, joint, angles):
-        """Rays from ``joint`` at ``angles`` over the probe length."""
+        """Rays from ``joint`` at ``angles`` over the probe length (through the
+        contact model's fused ``fan`` when it has one: the same rays)."""
+        fan = self._fused_fan
+        if fan is not None:
+            angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+            t0 = time.perf_counter()
+            d, p = fan(joint, angles, self.length)
+            stats = self.stats
+            stats.cast_seconds += time.perf_counter() - t0
+            stats.casts += 1
+            stats.rays += len(angles)
+            return d, p
         dirs = unit(angles).reshape(-1, 2)
         origins = np.empty_like(dirs)
         origins[:] = joint
@@ -170,6 +182,17 @@ class Probe:
             yield ks
             pos = float(ks[-1])
 
+    def _settle_offsets(self, along_angle, back_angle):
+        """``[0, head(along_angle), -head(back_angle)]`` (cached) and the two
+        head lengths: the offsets of a settle's first batch."""
+        key = (float(along_angle), float(back_angle))
+        got = self._offset_cache.get(key)
+        if got is None:
+            along, back = self._offsets_head(along_angle), self._offsets_head(back_angle)
+            got = self._offset_cache[key] = (np.concatenate(([0.0], along, -back)),
+                                             len(along), len(back))
+        return got
+
     def _offsets_head(self, max_angle):
         """The first window of :meth:`_offsets` (its rays go in a caller's batch)."""
         key = float(max_angle)
@@ -203,9 +226,21 @@ class Probe:
         changes within ``max_angle``.
         """
         prev = 0.0
+        if first is not None:  # the first window, cast already: no array of angles
+            offs = self._offsets_head(max_angle)
+            d, p = first
+            hit = d < math.inf if want_blocked else d == math.inf
+            i = int(hit.argmax())
+            if hit[i]:
+                lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
+                return self._refine(joint, lo, theta0 + rot_dir * offs[i], (d[i], p[i]),
+                                    want_blocked)
+            prev = offs[-1]
         for k, offs in enumerate(self._offsets(max_angle)):
+            if k == 0 and first is not None:
+                continue
             ang = theta0 + rot_dir * offs
-            d, p = first if k == 0 and first is not None else self._fan(joint, ang)
+            d, p = self._fan(joint, ang)
             hit = d < math.inf if want_blocked else d == math.inf
             i = int(hit.argmax())
             if hit[i]:

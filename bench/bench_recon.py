@@ -21,6 +21,7 @@ import numpy as np
 
 import meshes
 import recon3d
+from recon3d.output import without_timing
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
 REAL = ("trimesh_featuretype.stl", "mujoco_spot.ply", "trimesh_idler_riser.stl")
@@ -34,12 +35,6 @@ def _cases(arg):
     return [(n, str(SHARED / n) if (SHARED / n).is_file() else n) for n in names]
 
 
-def _timeless(obj):
-    if isinstance(obj, dict):
-        return {k: _timeless(v) for k, v in obj.items() if k not in ("seconds", "jobs")}
-    if isinstance(obj, list):
-        return [_timeless(v) for v in obj]
-    return obj
 
 
 def _row(name, source, slices, share, jobs):
@@ -51,7 +46,7 @@ def _row(name, source, slices, share, jobs):
         t0 = time.perf_counter()
         res = recon3d.run(source, slices=slices, eps=eps, jobs=j)
         walls.append(time.perf_counter() - t0)
-        docs.append(_timeless(res.metrics))
+        docs.append(without_timing(res.metrics))
     t, s = res.metrics["total"], res.metrics["total"]["surface"] or {}
     return {"case": name, "cd": (s.get("chamfer_l1") or np.nan) / diag,
             "f1": (s.get("fscore") or {}).get("1%", np.nan), "cov2d": t.get("coverage"),

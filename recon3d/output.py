@@ -9,9 +9,24 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["sensing_document", "metrics_document", "ROBOT_RULE"]
+__all__ = ["sensing_document", "metrics_document", "without_timing", "ROBOT_RULE"]
 
 ROBOT_RULE = "robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
+
+
+def without_timing(doc):
+    """``doc`` (a sensing.json / metrics.json document, or any part of one)
+    without the keys that depend on the machine (``seconds``, ``jobs``):
+    what two runs of the same job must agree on.
+
+    >>> without_timing({"stats": {"motions": 3, "seconds": 0.2}, "jobs": 2})
+    {'stats': {'motions': 3}}
+    """
+    if isinstance(doc, dict):
+        return {k: without_timing(v) for k, v in doc.items() if k not in ("seconds", "jobs")}
+    if isinstance(doc, list):
+        return [without_timing(v) for v in doc]
+    return doc
 
 
 def _world(cut, pts) -> list:

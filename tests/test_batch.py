@@ -5,6 +5,7 @@ import json
 import pytest
 
 from recon3d.cli import main
+from recon3d.output import without_timing
 
 MANIFEST = """
 meshes = ["fig17_pocket", "stepped_pyramid"]
@@ -14,19 +15,13 @@ eps_share = 0.025
 """
 
 
-def _timeless(obj):
-    if isinstance(obj, dict):
-        return {k: _timeless(v) for k, v in obj.items() if k not in ("seconds", "jobs")}
-    if isinstance(obj, list):
-        return [_timeless(v) for v in obj]
-    return obj
 
 
 def _read(out):
     rows = list(csv.DictReader(open(out / "batch.csv")))
     docs = {}
     for d in sorted((out / "runs").iterdir()):
-        docs[d.name] = ({k: _timeless(json.load(open(d / f"{k}.json")))
+        docs[d.name] = ({k: without_timing(json.load(open(d / f"{k}.json")))
                          for k in ("metrics", "sensing")}, (d / "surface.ply").read_bytes())
     return rows, docs
 

@@ -10,6 +10,7 @@ import trimesh
 
 import meshes
 from recon3d.cli import main
+from recon3d.output import without_timing
 
 OUTPUTS = {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene", "coverage.png"}
 
@@ -19,12 +20,6 @@ def _cli(*args, cwd=None, env=None):
                           text=True, cwd=cwd, env=env)
 
 
-def _strip_timing(obj):
-    if isinstance(obj, dict):
-        return {k: _strip_timing(v) for k, v in obj.items() if k not in ("seconds", "jobs")}
-    if isinstance(obj, list):
-        return [_strip_timing(v) for v in obj]
-    return obj
 
 
 def test_scenes_lists_every_scene_tab_separated():
@@ -90,7 +85,7 @@ def test_jobs_2_equals_jobs_1_and_quiet_is_quiet(tmp_path):
                  "--axis", "x", "--jobs", jobs, "--quiet", "--no-png")
         assert r.returncode == 0, r.stderr
         assert r.stderr == ""  # no progress bar, no degenerate-plane note
-        docs.append([_strip_timing(json.loads((out / f).read_text()))
+        docs.append([without_timing(json.loads((out / f).read_text()))
                      for f in ("sensing.json", "metrics.json")])
         docs[-1].append((out / "surface.ply").read_bytes())
     assert docs[0] == docs[1]

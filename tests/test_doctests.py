@@ -22,6 +22,7 @@ MODULES = [
     "core2d.planner.local_search",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
+    "recon3d.output",
 ]
 
 

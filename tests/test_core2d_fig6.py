@@ -11,10 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shapely.geometry import Point, Polygon
+from shapely.geometry import Point
 
 from core2d.planner.areas import Area, pivot_G
-from core2d.planner.local_search import bisection
 from core2d.planner.revisit import MAX_SWEEP, MAX_TRIES, revisit
 from core2d.readings import LEFT, RIGHT, TIP
 from figure_scenes import (GRAZE_AWAY, GRAZE_DIR, LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, block,

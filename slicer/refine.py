@@ -30,7 +30,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["fill_rays", "fill_fan", "refine_hits", "NO_LIMITS"]
+__all__ = ["fill_rays", "fill_fan", "refine_hits", "segment_hit", "NO_LIMITS"]
 
 NO_LIMITS = np.zeros(0)
 """Pass as ``limits`` when one ``max_dist`` holds for every ray."""
@@ -83,32 +83,36 @@ def refine_hits(table, prim, origins, dirs, max_dist, limits, out):  # pragma: n
     for i in range(prim.shape[0]):
         k = prim[i]
         md = limits[i] if per_ray else max_dist
-        ox, oy, dx, dy = origins[i, 0], origins[i, 1], dirs[i, 0], dirs[i, 1]
-        s = np.inf
-        den = 0.0
-        if k >= 0:
-            ax, ay, ex, ey = table[k, 0], table[k, 1], table[k, 2], table[k, 3]
-            wx = ax - ox
-            wy = ay - oy
-            den = dx * ey - dy * ex
-            if den != 0.0:
-                r = (wx * dy - wy * dx) / den
-                r = 0.0 if r < 0.0 else (1.0 if r > 1.0 else r)
-            else:  # ray along the segment's line: nearer endpoint
-                r = 0.0 if wx * dx + wy * dy <= (wx + ex) * dx + (wy + ey) * dy else 1.0
-            s = (wx + r * ex) * dx + (wy + r * ey) * dy
-            if s < 0.0:
-                s = 0.0
-        if k < 0 or s > md:
+        if k < 0:
             out[i, 0] = np.inf
             out[i, 1] = out[i, 2] = out[i, 3] = out[i, 4] = np.nan
             continue
-        out[i, 0] = s
-        out[i, 1] = ox + s * dx
-        out[i, 2] = oy + s * dy
-        if den > 0.0:
-            out[i, 3] = -table[k, 4] + 0.0
-            out[i, 4] = -table[k, 5] + 0.0
-        else:
-            out[i, 3] = table[k, 4] + 0.0
-            out[i, 4] = table[k, 5] + 0.0
+        s, px, py, nx, ny = segment_hit(table, k, origins[i, 0], origins[i, 1],
+                                        dirs[i, 0], dirs[i, 1], md)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4] = s, px, py, nx, ny
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def segment_hit(table, k, ox, oy, dx, dy, max_dist):  # pragma: no cover - compiled
+    """Float64 contact of one ray with segment ``k`` of ``table`` (Embree's hit).
+
+    Returns ``(distance, x, y, nx, ny)``: ``(inf, nan, nan, nan, nan)`` beyond
+    ``max_dist``; the normal is oriented against the ray.
+    """
+    ax, ay, ex, ey = table[k, 0], table[k, 1], table[k, 2], table[k, 3]
+    wx = ax - ox
+    wy = ay - oy
+    den = dx * ey - dy * ex
+    if den != 0.0:
+        r = (wx * dy - wy * dx) / den
+        r = 0.0 if r < 0.0 else (1.0 if r > 1.0 else r)
+    else:  # ray along the segment's line: nearer endpoint
+        r = 0.0 if wx * dx + wy * dy <= (wx + ex) * dx + (wy + ey) * dy else 1.0
+    s = (wx + r * ex) * dx + (wy + r * ey) * dy
+    if s < 0.0:
+        s = 0.0
+    if s > max_dist:
+        return np.inf, np.nan, np.nan, np.nan, np.nan
+    if den > 0.0:
+        return s, ox + s * dx, oy + s * dy, -table[k, 4] + 0.0, -table[k, 5] + 0.0
+    return s, ox + s * dx, oy + s * dy, table[k, 4] + 0.0, table[k, 5] + 0.0

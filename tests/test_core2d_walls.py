@@ -67,7 +67,8 @@ def test_planner_modules_never_touch_the_contact_model():
     for path in files:
         src = path.read_text()
         for pattern in (r"probe\.contact\b", r"\.cast\(", r"\._fan\(", r"\._search\(",
-                        r"\._cast\(", r"\breachability\b", r"\bmetrics\b", r"\bloops\b"):
+                        r"\._cast\(", r"\bray_kernel\b", r"\bkernels\b", r"\breachability\b",
+                        r"\bmetrics\b", r"\bloops\b"):
             assert not re.search(pattern, src), f"core2d/planner/{path.name} matches {pattern!r}"
 
 

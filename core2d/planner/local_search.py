@@ -22,7 +22,8 @@ from shapely.geometry import Point
 
 from core2d.planar import wrap
 from core2d.readings import TIP
-from core2d.planner.regions import G_region, V_polygon, common_point, cross, in_V, polygonal
+from core2d.planner.regions import G_region, V_polygon, common_point, polygonal
+from core2d.planner.tip_bound import polygon_rings, tip_bound
 
 __all__ = ["initial_pass", "bisection", "definition5", "LocalResult"]
 
@@ -112,39 +113,6 @@ def _bounds(joint, theta, a, b):
     return ccw, cw
 
 
-def _crosses(p, tips, a, b) -> np.ndarray:
-    """Do the segments p -> tips[k] properly cross segment ab? (k,) bool."""
-    ab, p, a, b = np.asarray(b) - a, np.asarray(p), np.asarray(a), np.asarray(b)
-    d1, d2 = cross(ab, p - a), cross(ab, tips - a)
-    pt = tips - p
-    d3, d4 = cross(pt, a - p), cross(pt, b - p)
-    return (d1 * d2 < 0) & (d3 * d4 < 0)
-
-
-def _tip_bound(probe, G, a, b, theta, rot_dir, limit, chunk=4096):
-    """Theorem 3: largest swing (<= limit) keeping the tip inside
-    T_i^(j) cap V_i cap G_i, or beyond it only across L_{A_i}^{B_i}
-    (checked on the swept arc at the fan spacing, in chunks of 64 tips
-    growing 4x up to ``chunk``: the first bad tip is usually near; G is G_i
-    buffered by tol)."""
-    if limit <= 0:
-        return 0.0
-    n = max(4, int(limit / probe.fan_step))
-    lo, size = 0, min(64, chunk)
-    while lo < n:
-        k = np.arange(lo + 1, min(n, lo + size) + 1)
-        angs = theta + rot_dir * limit * k / n
-        tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)
-        free_side = in_V(tips, a, b)
-        inside = shapely.contains_xy(G, tips[:, 0], tips[:, 1])
-        through_lid = _crosses(probe.joint, tips, a, b)
-        bad = ~((free_side & inside) | (~free_side & through_lid))
-        if bad.any():
-            return float(limit * (lo + int(np.argmax(bad))) / n)
-        lo, size = lo + size, min(4 * size, chunk)
-    return limit
-
-
 def bisection(probe, area, G, reading, max_iter=60):
     """Bisection local concave point search from an initial tip contact.
 
@@ -155,14 +123,13 @@ def bisection(probe, area, G, reading, max_iter=60):
     r = reading
     last = r.tip_contact.point
     small = 0
-    G = G.buffer(probe.tol)  # Theorem 3 bound, tolerant to the contact resolution
-    shapely.prepare(G)
+    G = polygon_rings(G.buffer(probe.tol))  # Theorem 3, tolerant to the contact resolution
     it = 0
     con_ccw = con_cw = False
     for it in range(1, max_iter + 1):
         ccw_lim, cw_lim = _bounds(probe.joint, probe.theta, area.a, area.b)
-        ccw_lim = _tip_bound(probe, G, area.a, area.b, probe.theta, 1, ccw_lim)
-        cw_lim = _tip_bound(probe, G, area.a, area.b, probe.theta, -1, cw_lim)
+        ccw_lim = tip_bound(probe, G, area.a, area.b, probe.theta, 1, ccw_lim)
+        cw_lim = tip_bound(probe, G, area.a, area.b, probe.theta, -1, cw_lim)
         con_ccw = r.blocked_ccw or ccw_lim <= probe.ang_tol
         con_cw = r.blocked_cw or cw_lim <= probe.ang_tol
         if con_ccw and con_cw:

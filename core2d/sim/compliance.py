@@ -22,6 +22,7 @@ import math
 import numpy as np
 
 from core2d.readings import TIP
+from core2d.sim import kernels
 
 __all__ = ["compliant_trace", "MAX_SETTLE"]
 
@@ -101,23 +102,40 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     """
     probe._motion()
     v = np.asarray(v, float) / np.linalg.norm(v)
-    vx, vy = float(v[0]), float(v[1])
     rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
     delta0 = probe.eps / 4 if delta is None else float(delta)
+    stop = None if stop_at is None else np.asarray(stop_at, float)
+    leave = None if leave_at is None else np.asarray(leave_at, float)
+    first = probe.sense()
+    last = first.tip_contact
+    leave_far = leave is not None and last is not None and float(
+        np.linalg.norm(last.point - leave)) > probe.tip_zone
+    steps = _steps if probe._compiled is None else _steps_compiled
+    event, trace, before, primary = steps(probe, v, rot_dir, delta0, max_dist, max_steps,
+                                          guard_push, last, stop, leave if leave_far else None)
+    kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
+              before_direction=np.array(before[1], dtype=float))
+    if primary is not None:
+        kw["primary"] = primary
+    return probe.sense(event, **kw)
+
+
+def _steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop, leave):
+    """The micro-steps of a compliant trace (Python; any contact model).
+
+    Returns ``(event, trace points, (joint, direction) before the last
+    step, primary contact or None)``. ``leave`` is given only when the trace
+    starts farther than the tip zone from it.
+    """
+    vx, vy = float(v[0]), float(v[1])
     dmin = probe.tol / 2
     jump = probe.eps / 2
     near = 2 * probe.tol
     L = probe.length
     step = delta0
     travelled = 0.0
-    stop = None if stop_at is None else np.asarray(stop_at, float)
     sx, sy = (0.0, 0.0) if stop is None else (float(stop[0]), float(stop[1]))
-    leave = None if leave_at is None else np.asarray(leave_at, float)
-    first = probe.sense()
-    last = first.tip_contact
     trace = [last.point] if last is not None else []
-    leave_far = leave is not None and last is not None and float(
-        np.linalg.norm(trace[0] - leave)) > probe.tip_zone
     before = (probe.joint.copy(), probe.direction)
     event, primary = "limit", None
     prev_disp = None
@@ -175,15 +193,40 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
             trace.append(stop)
             event = "reached"  # the tip passed P_fin during this step
             break
-        if leave_far and _passes(probe, leave, last.point, contact.point):
+        if leave is not None and _passes(probe, leave, last.point, contact.point):
             trace.append(leave)
             event = "left"  # the tip passed the other end of the area
             break
         last = contact
         trace.append(contact.point)
         step = min(delta0, 2 * step)
-    kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
-              before_direction=np.array(before[1], dtype=float))
-    if primary is not None:
-        kw["primary"] = primary
-    return probe.sense(event, **kw)
+    return event, trace, before, primary
+
+
+def _steps_compiled(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop,
+                    leave):
+    """:func:`_steps` in compiled code (:func:`core2d.sim.kernels.trace_steps`),
+    for a contact model with a ray function: the same steps and rays."""
+    pose = np.array((probe.joint[0], probe.joint[1], probe.theta, probe.stats.joint_path))
+    motion = (float(v[0]), float(v[1]), float(rot_dir), float(delta0), probe.tol / 2,
+              probe.eps / 2, 2 * probe.tol, float(max_dist), float(max_steps),
+              1.0 if guard_push else 0.0)
+    marks = np.zeros(9)
+    for k, point in ((0, None if last is None else last.point), (3, stop), (6, leave)):
+        if point is not None:
+            marks[k:k + 3] = (1.0, point[0], point[1])
+    code, trace, before, primary = probe._run_kernel(
+        kernels.trace_steps, pose, motion, marks, _settle_plan(probe))
+    probe.joint, probe.theta = pose[:2].copy(), float(pose[2])
+    probe.stats.joint_path = float(pose[3])
+    if not np.isnan(primary[0]):
+        primary = probe._contact_at(primary[0], primary[1:].copy(), rot_dir)
+    else:
+        primary = None
+    return kernels.EVENTS[code], trace, (before[:2], before[2:]), primary
+
+
+def _settle_plan(probe):
+    """The settle's first batch and both searches' reach, for the kernels."""
+    offsets, n_along, _ = probe._settle_offsets(MAX_SETTLE, _MAX_YIELD)
+    return offsets, n_along, MAX_SETTLE, _MAX_YIELD

@@ -19,11 +19,13 @@ import numpy as np
 from core2d.planar import angle_of, unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.result import SenseStats
+from core2d.sim import kernels
 
 __all__ = ["Probe", "unit", "angle_of"]
 
-_WINDOWS = (8, 32, 128, 512, 2048, 8192)
+_WINDOWS = kernels._WINDOWS  # fan windows at the fan spacing
 _REFINE = 16
+_NO_FIRST = np.zeros((3, 0))
 _STEPS = np.arange(_REFINE + 2, dtype=np.float64)[1:-1]  # np.linspace's steps 1 .. _REFINE
 
 
@@ -62,6 +64,15 @@ class Probe:
         self.stats = SenseStats()
         self._offset_cache = {}
         self._fused_fan = getattr(contact, "fan", None)  # optional (Embree backend)
+        self._compiled = None  # (ray function, context address): core2d.sim.kernels
+        kernel = getattr(contact, "ray_kernel", None)  # optional (Embree backend)
+        if kernel is not None:
+            self._context = kernel[1]  # keeps the context alive
+            self._compiled = (int(kernel[0]), int(kernel[1].ctypes.data))
+            self._par = np.array((self.length, self.ang_tol, self.fan_step, self.tip_zone,
+                                  _WINDOWS[-1]))
+            self._work = np.empty((5, _WINDOWS[-1]))
+            self._count = np.zeros(4, dtype=np.int64)
         self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
         self.theta = -np.pi / 2
 
@@ -79,7 +90,14 @@ class Probe:
 
     def _cast(self, origins, dirs, max_dist):
         t0 = time.perf_counter()
-        d, p, _ = self.contact.cast(origins, dirs, max_dist)
+        if self._compiled is not None:  # the same rays, one at a time
+            n = len(origins)
+            limits = max_dist if type(max_dist) is np.ndarray else np.full(n, float(max_dist))
+            out = np.empty((n, 3))
+            kernels.cast(*self._compiled, origins, dirs, limits, out)
+            d, p = out[:, 0], out[:, 1:]
+        else:
+            d, p, _ = self.contact.cast(origins, dirs, max_dist)
         self.stats.cast_seconds += time.perf_counter() - t0
         self.stats.casts += 1
         self.stats.rays += len(origins)
@@ -201,6 +219,21 @@ class Probe:
             head = self._offset_cache[key] = self._make_offsets(key)
         return head[0] if head else np.zeros(0)
 
+    def _run_kernel(self, kernel, *args):
+        """Call a compiled search (:mod:`core2d.sim.kernels`) and book its
+        casts, rays and time as the Python path would."""
+        count = self._count
+        count[:] = 0
+        t0 = time.perf_counter()
+        out = kernel(*self._compiled, *args, self._par, self._work, count)
+        stats = self.stats
+        stats.cast_seconds += time.perf_counter() - t0
+        stats.casts += int(count[0])
+        stats.rays += int(count[1])
+        stats.pushes += int(count[2])
+        stats.push_attempts += int(count[3])
+        return out
+
     def _make_offsets(self, max_angle):
         out, pos, step = [], 0.0, min(self.fan_step, 2 * self.ang_tol)
         while step < self.fan_step and pos < max_angle:
@@ -225,6 +258,11 @@ class Probe:
         bracket and the hit of its blocked side -- or None when nothing
         changes within ``max_angle``.
         """
+        if self._compiled is not None and first is None:
+            found, angle, d, x, y = self._run_kernel(
+                kernels.search, float(joint[0]), float(joint[1]), float(theta0),
+                float(rot_dir), float(max_angle), want_blocked, _NO_FIRST)
+            return (angle, (d, np.array((x, y)))) if found else None
         prev = 0.0
         if first is not None:  # the first window, cast already: no array of angles
             offs = self._offsets_head(max_angle)

@@ -1,0 +1,348 @@
+"""Compiled contact resolution of the probe simulator (§3.2, §4.3), numba.
+
+The simulator resolves a contact by bisection: a fan of rays from the joint,
+then finer fans inside the bracket where the probe turns from free to
+blocked, until the bracket is below the angular resolution. In Python each
+fan costs a call into the contact model, ~5 us however few its rays, and a
+compliant trace makes one settle per joint micro-step: the per-call cost, not
+the rays, was most of the sensing time. These kernels run the same searches
+(:meth:`core2d.sim.probe.Probe._search`, ``_refine``,
+:func:`core2d.sim.compliance._settle` and the micro-step loop of
+:func:`core2d.sim.compliance.compliant_trace`) in compiled code, calling a
+contact model's *ray function* once per ray.
+
+A ray function is any C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)``
+writing ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), given
+as the pair ``(address, ctx)`` by a contact model's ``ray_kernel`` (the
+Embree backend has one: :mod:`slicer.embree_direct`). core2d never learns
+what is behind it: the same contract as ``cast``, one ray at a time.
+
+The kernels cast the very rays of the Python path, window by window, and
+count casts and rays as it does, so results, counters and ray batches (the
+benchmark replays them on raw Embree) are identical;
+``tests/test_core2d_kernels.py`` checks it scene by scene.
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
+
+__all__ = ["cast", "fan", "search", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
+
+OK, LOST, JAMMED = 0, 1, 2
+EVENTS = ("limit", "reached-body", "pushing", "done", "blocked", "lost", "jump", "reached",
+          "left")
+"""Event names of :func:`trace_steps`, by code."""
+_REFINE = 16
+_WINDOWS = (8, 32, 128, 512, 2048, 8192)  # Probe's windows at the fan spacing
+
+
+@intrinsic
+def _call(typingctx, fn, ctx, ox, oy, dx, dy, md, out):
+    """Call the ray function at address ``fn`` (see the module doc)."""
+    sig = types.void(types.int64, types.int64, types.float64, types.float64,
+                     types.float64, types.float64, types.float64, types.int64)
+
+    def codegen(context, builder, signature, args):
+        dbl, i8p = ir.DoubleType(), ir.IntType(8).as_pointer()
+        fnty = ir.FunctionType(ir.VoidType(), [i8p, dbl, dbl, dbl, dbl, dbl, dbl.as_pointer()])
+        target = builder.inttoptr(args[0], fnty.as_pointer())
+        builder.call(target, [builder.inttoptr(args[1], i8p), *args[2:7],
+                              builder.inttoptr(args[7], dbl.as_pointer())])
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@numba.njit(cache=True, nogil=True)
+def fan(fn, ctx, jx, jy, angles, n, max_dist, d, px, py):  # pragma: no cover - compiled
+    """Rays from ``(jx, jy)`` at ``angles[:n]`` into ``d, px, py`` (one cast)."""
+    out = np.empty(3)
+    addr = out.ctypes.data
+    for i in range(n):
+        _call(fn, ctx, jx, jy, np.cos(angles[i]), np.sin(angles[i]), max_dist, addr)
+        d[i], px[i], py[i] = out[0], out[1], out[2]
+
+
+@numba.njit(cache=True, nogil=True)
+def cast(fn, ctx, origins, dirs, limits, out):  # pragma: no cover - compiled
+    """Rays ``origins`` (n, 2) along unit ``dirs`` (n, 2) up to ``limits`` (n,)
+    into ``out`` (n, 3): distance, x, y (one cast)."""
+    res = np.empty(3)
+    addr = res.ctypes.data
+    for i in range(origins.shape[0]):
+        _call(fn, ctx, origins[i, 0], origins[i, 1], dirs[i, 0], dirs[i, 1], limits[i], addr)
+        out[i, 0], out[i, 1], out[i, 2] = res[0], res[1], res[2]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _first(d, n, want_blocked):  # pragma: no cover - compiled
+    """Index of the first blocked (finite) or free (inf) ray of ``d[:n]``, or -1."""
+    for i in range(n):
+        if (d[i] < np.inf) == want_blocked:
+            return i
+    return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def _refine(fn, ctx, jx, jy, a_before, a_after, hit, want_blocked, par, work, count):
+    # pragma: no cover - compiled
+    """``Probe._refine``: shrink [a_before, a_after] to ang_tol; returns the
+    resolved angle and the blocked side's ``(d, x, y)``."""
+    L, ang_tol = par[0], par[1]
+    ang, d, px, py = work[0], work[1], work[2], work[3]
+    have = want_blocked
+    bd, bx, by = hit if want_blocked else (np.inf, np.nan, np.nan)
+    while abs(a_after - a_before) > ang_tol:
+        w = (a_after - a_before) / (_REFINE + 1)
+        for j in range(_REFINE):
+            ang[j] = (j + 1.0) * w + a_before
+        fan(fn, ctx, jx, jy, ang, _REFINE, L, d, px, py)
+        count[0] += 1
+        count[1] += _REFINE
+        i = _first(d, _REFINE, want_blocked)
+        if i >= 0:
+            a_after = ang[i]
+            if i > 0:
+                a_before = ang[i - 1]
+            if want_blocked:
+                bd, bx, by, have = d[i], px[i], py[i], True
+            elif i > 0:
+                bd, bx, by, have = d[i - 1], px[i - 1], py[i - 1], True
+        else:
+            a_before = ang[_REFINE - 1]
+            if not want_blocked:
+                bd, bx, by, have = d[_REFINE - 1], px[_REFINE - 1], py[_REFINE - 1], True
+    if want_blocked:
+        return a_before, bd, bx, by
+    if not have:  # the blocked side is the start angle itself
+        ang[0] = a_before
+        fan(fn, ctx, jx, jy, ang, 1, L, d, px, py)
+        count[0] += 1
+        count[1] += 1
+        bd, bx, by = d[0], px[0], py[0]
+    return a_after, bd, bx, by
+
+
+@numba.njit(cache=True, nogil=True)
+def _window(offs, st, max_angle, fan_step, cap):  # pragma: no cover - compiled
+    """Next window of ``Probe._offsets(max_angle)`` into ``offs``; its size, 0
+    at the end. ``st`` = [phase, pos, step, window index] carries the state:
+    fine windows of 8 (step x4 each) up to the fan spacing, windows of
+    8 ... 8192 rays at the fan spacing, then windows of ``cap``; every
+    offset clipped to ``max_angle``."""
+    if st[0] == 0:
+        if st[2] < fan_step and st[1] < max_angle:
+            for j in range(8):
+                offs[j] = st[1] + st[2] * (j + 1)
+            st[1], st[2] = offs[7], min(fan_step, 4 * st[2])
+            for j in range(8):
+                offs[j] = min(offs[j], max_angle)
+            return 8
+        st[0] = 1
+    if st[0] == 1:
+        w = int(st[3])
+        if w < len(_WINDOWS) and st[1] < max_angle:
+            n = _WINDOWS[w]
+            for j in range(n):
+                offs[j] = st[1] + fan_step * (j + 1)
+            st[1], st[3] = offs[n - 1], w + 1
+            for j in range(n):
+                offs[j] = min(offs[j], max_angle)
+            return n
+        st[0], st[1] = 2, min(st[1], max_angle)  # the tail starts at the last offset
+    if st[1] < max_angle:
+        for j in range(cap):
+            offs[j] = min(st[1] + fan_step * (j + 1), max_angle)
+        st[1] = offs[cap - 1]
+        return cap
+    return 0
+
+
+@numba.njit(cache=True, nogil=True)
+def search(fn, ctx, jx, jy, theta0, rot_dir, max_angle, want_blocked, first, par, work,
+           count):  # pragma: no cover - compiled
+    """``Probe._search``: first angle from ``theta0`` towards ``rot_dir``
+    (+-1.0) where the probe becomes blocked (or free).
+
+    first : (3, m) ``d, x, y`` of the first window when the caller cast it
+        already (m = 0 otherwise).
+    par : ``(L, ang_tol, fan_step, tip_zone, window cap)``.
+    work : (5, cap) scratch. count : (2,) int, casts and rays, incremented.
+
+    Returns ``(found, angle, d, x, y)``.
+    """
+    L, fan_step, cap = par[0], par[2], int(par[4])
+    ang, d, px, py, offs = work[0], work[1], work[2], work[3], work[4]
+    st = np.array((0.0, 0.0, min(fan_step, 2 * par[1]), 0.0))
+    prev = 0.0
+    if first.shape[1] > 0:  # the first window, cast already
+        n = _window(offs, st, max_angle, fan_step, cap)
+        i = _first(first[0], n, want_blocked)
+        if i >= 0:
+            lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
+            hit = (first[0, i], first[1, i], first[2, i])
+            a, bd, bx, by = _refine(fn, ctx, jx, jy, lo, theta0 + rot_dir * offs[i], hit,
+                                    want_blocked, par, work, count)
+            return True, a, bd, bx, by
+        prev = offs[n - 1]
+    while True:
+        n = _window(offs, st, max_angle, fan_step, cap)
+        if n == 0:
+            return False, 0.0, np.inf, np.nan, np.nan
+        for j in range(n):
+            ang[j] = theta0 + rot_dir * offs[j]
+        fan(fn, ctx, jx, jy, ang, n, L, d, px, py)
+        count[0] += 1
+        count[1] += n
+        i = _first(d, n, want_blocked)
+        if i >= 0:
+            lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
+            hit = (d[i], px[i], py[i])
+            a, bd, bx, by = _refine(fn, ctx, jx, jy, lo, ang[i], hit, want_blocked, par,
+                                    work, count)
+            return True, a, bd, bx, by
+        prev = offs[n - 1]
+
+
+@numba.njit(cache=True, nogil=True)
+def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
+    # pragma: no cover - compiled
+    """``compliance._settle``: the pose reached on the joint ``(jx, jy)`` from
+    ``theta`` under the torque ``rot_dir`` (+-1.0).
+
+    plan : ``(offsets, n_along, max_along, max_back)``: the settle's first
+    batch (``[0, along window, -back window]``) and both searches' reach.
+
+    Returns ``(status, theta, d, x, y)``, status :data:`OK`, :data:`LOST` or
+    :data:`JAMMED`.
+    """
+    soffs, n_along, max_a, max_b = plan
+    n = len(soffs)
+    ang = np.empty(n)
+    batch = np.empty((3, n))
+    for j in range(n):
+        ang[j] = theta + rot_dir * soffs[j]
+    fan(fn, ctx, jx, jy, ang, n, par[0], batch[0], batch[1], batch[2])
+    count[0] += 1
+    count[1] += n
+    if batch[0, 0] == np.inf:
+        found, a, d, x, y = search(fn, ctx, jx, jy, theta, rot_dir, max_a, True,
+                                   batch[:, 1:1 + n_along], par, work, count)
+        if not found:
+            return LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
+    else:
+        found, a, d, x, y = search(fn, ctx, jx, jy, theta, -rot_dir, max_b, False,
+                                   batch[:, 1 + n_along:], par, work, count)
+        if not found:
+            return JAMMED, theta, np.inf, np.nan, np.nan
+    return OK, a, d, x, y
+
+
+@numba.njit(cache=True, nogil=True)
+def _distance_xy(px, py, ax, ay, abx, aby):  # pragma: no cover - compiled
+    """``compliance._distance_xy``: from (px, py) to the segment (ax, ay) + [0, 1] ab."""
+    den = abx * abx + aby * aby
+    s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
+    return math.hypot(ax + s * abx - px, ay + s * aby - py)
+
+
+@numba.njit(cache=True, nogil=True)
+def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
+    # pragma: no cover - compiled
+    """The micro-step loop of ``compliance.compliant_trace``, compiled.
+
+    pose : ``[jx, jy, theta, joint_path]``, updated in place.
+    motion : ``(vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps,
+        guard_push)``.
+    marks : ``[has_last, last x, last y, has_stop, stop x, stop y, leave_far,
+        leave x, leave y]``.
+    count : (4,) int -- casts, rays, pushes, push attempts, incremented.
+
+    Returns ``(event code, trace (k, 2), before (4,) joint and direction,
+    primary (d, x, y) or d = nan)``: see :data:`EVENTS`.
+    """
+    vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps, guard = motion
+    L, tip_zone = par[0], par[3]
+    has_last, lx, ly = marks[0] > 0, marks[1], marks[2]
+    has_stop, sx, sy = marks[3] > 0, marks[4], marks[5]
+    leave_far, ex, ey = marks[6] > 0, marks[7], marks[8]
+    trace = np.empty((64, 2))
+    nt = 0
+    if has_last:
+        trace[0, 0], trace[0, 1] = lx, ly
+        nt = 1
+    jx, jy, theta = pose[0], pose[1], pose[2]
+    before = np.array((jx, jy, math.cos(theta), math.sin(theta)))
+    primary = np.array((np.nan, np.nan, np.nan))
+    event = 0
+    step, travelled = delta0, 0.0
+    prev_disp, has_prev = 0.0, False
+    for _ in range(int(max_steps)):
+        c, s = math.cos(theta), math.sin(theta)
+        if has_stop and _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx,
+                                     (jy + L * s) - jy) <= near:
+            event = 1  # reached-body
+            break
+        if vx * c + vy * s > 0:
+            if guard > 0:  # Case 3: the guard intercepts a pushing step
+                count[3] += 1
+                event = 2
+                break
+            count[2] += 1
+        if travelled >= max_dist:
+            event = 3
+            break
+        h = min(step, max_dist - travelled)
+        njx, njy = jx + h * vx, jy + h * vy
+        status, nth, d, qx, qy = settle(fn, ctx, njx, njy, theta, rot_dir, plan, par, work,
+                                        count)
+        sliding = status == OK and L - d <= tip_zone and has_last
+        disp = math.hypot(qx - lx, qy - ly) if sliding else np.inf
+        continuous = disp <= jump
+        if not continuous:
+            shrinking = sliding and (not has_prev or disp < 0.75 * prev_disp)
+            if (h > dmin or shrinking) and h > dmin / 1024:
+                prev_disp, has_prev = disp, sliding
+                step = h / 2
+                continue
+        has_prev = False
+        if status == JAMMED:
+            event = 4
+            break
+        before[0], before[1], before[2], before[3] = jx, jy, c, s
+        pose[3] += h
+        travelled += h
+        jx, jy, theta = njx, njy, nth
+        if status == LOST:
+            event = 5
+            break
+        if not continuous:
+            event = 6
+            primary[0], primary[1], primary[2] = d, qx, qy
+            break
+        if nt + 1 >= len(trace):
+            grown = np.empty((2 * len(trace), 2))
+            grown[:nt] = trace[:nt]
+            trace = grown
+        if has_stop and has_last and _distance_xy(sx, sy, lx, ly, qx - lx, qy - ly) <= tip_zone:
+            trace[nt, 0], trace[nt, 1] = sx, sy
+            nt += 1
+            event = 7  # the tip passed P_fin during this step
+            break
+        if leave_far and _distance_xy(ex, ey, lx, ly, qx - lx, qy - ly) <= tip_zone:
+            trace[nt, 0], trace[nt, 1] = ex, ey
+            nt += 1
+            event = 8  # the tip passed the other end of the area
+            break
+        has_last, lx, ly = True, qx, qy
+        trace[nt, 0], trace[nt, 1] = qx, qy
+        nt += 1
+        step = min(delta0, 2 * step)
+    pose[0], pose[1], pose[2] = jx, jy, theta
+    return event, trace[:nt].copy(), before, primary

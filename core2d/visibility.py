@@ -17,10 +17,10 @@ at its middle.
 Angles ``psi`` are measured clockwise from ``t`` (inner points) or from +x
 shifted by pi (full circle); :func:`free_gaps` returns world angles.
 
-Inner points without ``own`` (the planner's lid question, hundreds of
-points against thousands of recorded segments) take a compiled path
-(numba): the same culling, arcs and gap rule in the same float64
-operations, numpy's ``arctan2`` in between, without the (points x
+Inner points (the planner's lid question, hundreds of points against
+thousands of recorded segments; the ground truth's contour samples) take a
+compiled path (numba): the same culling, arcs and gap rule in the same
+float64 operations, numpy's ``arctan2`` in between, without the (points x
 segments) temporaries; its answers are bit-identical (tested).
 
 Examples
@@ -122,16 +122,24 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
                            None if own is None else own[i:i + step], atol, chunk)
                  for i in range(0, c, step)]
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
-    if own is None and inner.all() and len(a):
+    if inner.all() and len(a):
         tx, ty = np.ascontiguousarray(tg[:, 0]), np.ascontiguousarray(tg[:, 1])
         atol, none = float(atol), np.zeros((0, 2))
-        k = _kept_pairs(p, tx, ty, a, b, atol, np.zeros(0, np.int64), none, none)
+        own = np.full(c, -1, np.int64) if own is None else np.ascontiguousarray(own)
+        k = _kept_pairs(p, tx, ty, a, b, atol, own, np.zeros(0, np.int64), none, none)
         row, y, x = np.empty(k, np.int64), np.empty((k, 2)), np.empty((k, 2))
-        k = _kept_pairs(p, tx, ty, a, b, atol, row, y, x)
+        k = _kept_pairs(p, tx, ty, a, b, atol, own, row, y, x)
         width, psi = np.empty(c), np.empty(c)
         _row_gaps(row[:k], -np.arctan2(y[:k], x[:k]), width, psi)  # numpy's, as below
         angle = np.arctan2(ty, tx) - psi
         return width, (angle + np.pi) % (2 * np.pi) - np.pi
+    return _vectorised(p, tg, a, b, inner, own, atol)
+
+
+def _vectorised(p, tg, a, b, inner, own, atol):
+    """:func:`free_gaps` on (points x segments) arrays, for any points (the
+    compiled path takes inner points only)."""
+    c = len(p)
     tx = np.where(inner, tg[:, 0], 1.0)
     ty = np.where(inner, tg[:, 1], 0.0)
     # cross(t, v) >= 0 at both ends (v = end - p): the segment lies in the
@@ -192,9 +200,10 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cover
+def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: no cover
     """(point, segment) pairs of :func:`free_gaps` for inner points, culled
-    as the vectorised path does (same float64 operations), in its order.
+    as the vectorised path does (same float64 operations), in its order;
+    segment ``own[r]`` of point r (-1: none) is ignored.
 
     With empty outputs it only counts the pairs the half-plane test keeps
     (an upper bound); otherwise it writes the row of each pair and the
@@ -206,7 +215,10 @@ def _kept_pairs(p, tx, ty, a, b, atol, out_row, out_y, out_x):  # pragma: no cov
     for r in range(p.shape[0]):
         px, py, txr, tyr = p[r, 0], p[r, 1], tx[r], ty[r]
         k = txr * py - tyr * px
+        skip = own[r]
         for j in range(a.shape[0]):
+            if j == skip:
+                continue
             ax, ay, bx, by = a[j, 0], a[j, 1], b[j, 0], b[j, 1]
             if not (txr * ay - tyr * ax - k < 0 or txr * by - tyr * bx - k < 0):
                 continue

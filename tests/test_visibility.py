@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from core2d.visibility import free_gaps
+from core2d.visibility import _vectorised, free_gaps
 
 
 def _case(seed):
@@ -28,13 +28,18 @@ def _case(seed):
 @pytest.mark.parametrize("atol", [0.0, 0.1])
 @pytest.mark.parametrize("seed", range(40))
 def test_compiled_half_plane_path_is_the_vectorised_one(seed, atol):
-    """Inner points without ``own`` take the compiled path; an ``own`` of -1
-    (no segment ignored) forces the vectorised one: bit-identical answers."""
+    """Inner points take the compiled path, with or without ``own`` (a
+    segment each point ignores): bit-identical to the vectorised one."""
     pts, tg, a, b = _case(seed)
-    fast = free_gaps(pts, tg, a, b, atol=atol)
-    slow = free_gaps(pts, tg, a, b, own=np.full(len(pts), -1), atol=atol)
-    for x, y in zip(fast, slow):
-        np.testing.assert_array_equal(x, y)
+    inner = np.ones(len(pts), dtype=bool)
+    own = np.random.default_rng(seed).integers(-1, len(a), len(pts))  # -1 .. n - 1
+    if len(a) and len(pts) > 1:
+        own[0] = len(a) - 1  # the point on that segment ignores it
+    for o in (None, own):
+        fast = free_gaps(pts, tg, a, b, own=o, atol=atol)
+        slow = _vectorised(pts, tg, a, b, inner, o, atol)
+        for x, y in zip(fast, slow):
+            np.testing.assert_array_equal(x, y)
 
 
 def _hits(p, d, a, b):

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from core2d.visibility import free_gaps
@@ -338,17 +339,33 @@ def _cross2(x, y):
 
 def _param(p, a, b) -> np.ndarray:
     """(n,) position of the projection of p on each segment a -> b, in [0, 1]."""
-    e = b - a
-    l2 = np.einsum("ij,ij->i", e, e)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.einsum("ij,ij->i", p - a, e) / l2
-    np.clip(t, 0.0, 1.0, out=t)
-    t[np.isnan(t)] = 0.0  # zero-length segments: their start
-    return t
+    out = np.empty(len(a))
+    _project(np.asarray(p, np.float64), a, b, out, np.empty(0))
+    return out
 
 
 def _point_segments(p, a, b) -> np.ndarray:
     """(n,) distances from point p to segments a -> b."""
-    t = _param(p, a, b)
-    q = a + t[:, None] * (b - a) - p
-    return np.hypot(q[:, 0], q[:, 1])
+    out = np.empty(len(a))
+    _project(np.asarray(p, np.float64), a, b, np.empty(len(a)), out)
+    return out
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _project(p, a, b, t, dist):  # pragma: no cover - compiled
+    """Projection parameter ``t`` (n,) of p on each segment a -> b, clamped to
+    [0, 1] (0 for a zero-length segment), and the distance ``dist`` (n,) to
+    the projection when ``dist`` has n entries; in the float64 operations of
+    the numpy expressions they replace."""
+    px, py = p[0], p[1]
+    with_dist = dist.shape[0] > 0
+    for i in range(a.shape[0]):
+        ex, ey = b[i, 0] - a[i, 0], b[i, 1] - a[i, 1]
+        s = ((px - a[i, 0]) * ex + (py - a[i, 1]) * ey) / (ex * ex + ey * ey)
+        s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+        if s != s:  # zero-length segment: its start
+            s = 0.0
+        t[i] = s
+        if with_dist:
+            dist[i] = np.hypot(a[i, 0] + s * (b[i, 0] - a[i, 0]) - px,
+                               a[i, 1] + s * (b[i, 1] - a[i, 1]) - py)

@@ -32,7 +32,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-__all__ = ["cast", "fan", "search", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
+__all__ = ["cast", "fan", "sense_rays", "search", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
 
 OK, LOST, JAMMED = 0, 1, 2
 EVENTS = ("limit", "reached-body", "pushing", "done", "blocked", "lost", "jump", "reached",
@@ -78,6 +78,23 @@ def cast(fn, ctx, origins, dirs, limits, out):  # pragma: no cover - compiled
     for i in range(origins.shape[0]):
         _call(fn, ctx, origins[i, 0], origins[i, 1], dirs[i, 0], dirs[i, 1], limits[i], addr)
         out[i, 0], out[i, 1], out[i, 2] = res[0], res[1], res[2]
+
+
+@numba.njit(cache=True, nogil=True)
+def sense_rays(fn, ctx, jx, jy, theta, alpha, L, tol, out):  # pragma: no cover - compiled
+    """The three rays of ``Probe.sense`` into ``out`` (3, 3) (one cast): from
+    the joint at ``theta +- alpha`` up to L + tol, and from the tip along t
+    up to tol."""
+    res = np.empty(3)
+    addr = res.ctypes.data
+    c, s = math.cos(theta), math.sin(theta)
+    for k in range(3):
+        if k < 2:
+            a = theta + alpha if k == 0 else theta - alpha
+            _call(fn, ctx, jx, jy, math.cos(a), math.sin(a), L + tol, addr)
+        else:
+            _call(fn, ctx, jx + L * c, jy + L * s, c, s, tol, addr)
+        out[k, 0], out[k, 1], out[k, 2] = res[0], res[1], res[2]
 
 
 @numba.njit(cache=True, nogil=True, inline="always")

@@ -98,10 +98,15 @@ class Probe:
             d, p = out[:, 0], out[:, 1:]
         else:
             d, p, _ = self.contact.cast(origins, dirs, max_dist)
-        self.stats.cast_seconds += time.perf_counter() - t0
-        self.stats.casts += 1
-        self.stats.rays += len(origins)
+        self._book(t0, len(origins))
         return d, p
+
+    def _book(self, t0, rays):
+        """Count one cast of ``rays`` rays that started at ``t0``."""
+        stats = self.stats
+        stats.cast_seconds += time.perf_counter() - t0
+        stats.casts += 1
+        stats.rays += rays
 
     def _fan(self, joint, angles):
         """Rays from ``joint`` at ``angles`` over the probe length (through the
@@ -145,11 +150,18 @@ class Probe:
         th, L, tol = self.theta, self.length, self.tol
         c, sn = math.cos(th), math.sin(th)
         jx, jy = float(self.joint[0]), float(self.joint[1])
-        origins = np.array(((jx, jy), (jx, jy), (jx + L * c, jy + L * sn)))
-        dirs = np.array(((math.cos(th + alpha), math.sin(th + alpha)),
-                         (math.cos(th - alpha), math.sin(th - alpha)), (c, sn)))
-        d, p = self._cast(origins, dirs, np.array((L + tol, L + tol, tol)))
-        t = dirs[2].copy()
+        if self._compiled is not None:  # the same rays in compiled code
+            out = np.empty((3, 3))
+            t0 = time.perf_counter()
+            kernels.sense_rays(*self._compiled, jx, jy, th, alpha, L, tol, out)
+            self._book(t0, 3)
+            d, p = out[:, 0], out[:, 1:]
+        else:
+            origins = np.array(((jx, jy), (jx, jy), (jx + L * c, jy + L * sn)))
+            dirs = np.array(((math.cos(th + alpha), math.sin(th + alpha)),
+                             (math.cos(th - alpha), math.sin(th - alpha)), (c, sn)))
+            d, p = self._cast(origins, dirs, np.array((L + tol, L + tol, tol)))
+        t = np.array((c, sn))
         d = d.tolist()
         tip_touch = d[2] < math.inf
         reach = L + (d[2] - 1e-3 * self.tol if tip_touch else 0.0)

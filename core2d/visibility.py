@@ -231,7 +231,11 @@ def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: n
             t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
             if t != t:  # nan (zero-length segment)
                 t = 0.0
-            if not math.hypot(vax + t * ex, vay + t * ey) > atol:
+            qx, qy = vax + t * ex, vay + t * ey
+            if atol == 0.0:  # hypot(q) > 0 without the hypot (finite q)
+                if not ((qx != 0.0 or qy != 0.0) and qx == qx and qy == qy):
+                    continue
+            elif not math.hypot(qx, qy) > atol:
                 continue
             out_row[m] = r
             out_y[m, 0] = txr * vay - tyr * vax

@@ -33,11 +33,15 @@ def _world(cut, pts) -> list:
     return np.asarray(cut.to_3d(np.asarray(pts, float).reshape(-1, 2))).round(9).tolist()
 
 
-def _area_log(cut, rec) -> dict:
-    """One A_iB_i record: which rule created it and how it ended."""
-    a, b = _world(cut, np.stack([rec.a, rec.b]))
-    return {"index": int(rec.index), "a": a, "b": b, "parent": int(rec.parent),
-            "rule": rec.rule, "outcome": rec.outcome, "note": rec.note}
+def _area_logs(cut, records) -> list:
+    """Every A_iB_i record: which rule created it and how it ended (the ends
+    of all records mapped to world in one call)."""
+    if not records:
+        return []
+    ends = _world(cut, np.array([(rec.a, rec.b) for rec in records], dtype=float))
+    return [{"index": int(rec.index), "a": ends[2 * k], "b": ends[2 * k + 1],
+             "parent": int(rec.parent), "rule": rec.rule, "outcome": rec.outcome,
+             "note": rec.note} for k, rec in enumerate(records)]
 
 
 def _slice_document(srun) -> dict:
@@ -57,7 +61,7 @@ def _slice_document(srun) -> dict:
         "v": np.asarray(plane.v, float).tolist(),
         "segments": segments,
         "unknown": [_world(cut, w) for w in res.unknown],
-        "areas": [_area_log(cut, rec) for rec in res.areas],
+        "areas": _area_logs(cut, res.areas),
         "nudge": float(plane.nudge),
         "stats": stats,
     }

@@ -23,6 +23,21 @@ for ray, ``tests/test_slicer_embree_direct.py``).
 The Embree library is the one ``embreex`` ships (``embreex.libs``) or one on
 the loader path; :func:`available` is False when neither loads, and callers
 keep to ``EmbreeContact.cast``.
+
+Examples
+--------
+>>> import ctypes, trimesh
+>>> from slicer.embree_contact import EmbreeContact
+>>> from slicer.planes import make_planes
+>>> box = trimesh.creation.box(extents=[2.0, 2.0, 2.0])
+>>> contact = EmbreeContact(box, make_planes(box, "z", offsets=[0.3])[0])
+>>> address, context = contact.ray_kernel
+>>> ray = ctypes.CFUNCTYPE(None, ctypes.c_void_p, *[ctypes.c_double] * 5,
+...                        ctypes.c_void_p)(address)
+>>> out = np.zeros(3)
+>>> ray(context.ctypes.data, -3.0, 0.5, 1.0, 0.0, 10.0, out.ctypes.data)
+>>> out.tolist()  # as contact.cast([[-3.0, 0.5]], [[1.0, 0.0]], 10.0)
+[2.0, -1.0, 0.5]
 """
 from __future__ import annotations
 

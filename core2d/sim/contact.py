@@ -24,6 +24,17 @@ One call is one batch (one Embree query for the Embree backend). Rays whose
 origin lies exactly on the contour have no defined answer: callers step off
 the surface first. Implementations live in :mod:`slicer` (Embree and exact);
 core2d never imports them.
+
+Two optional members make the simulator faster without changing an answer:
+
+``fan(origin, angles, max_dist) -> (distances, points)``
+    ``cast`` of the rays from one origin at ``angles`` (unit directions
+    ``(cos, sin)``), fused.
+``ray_kernel -> (address, context) or None``
+    A C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)`` answering one
+    ray as ``cast`` does (``out[:3] = distance, x, y``) and the array whose
+    data pointer is ``ctx``: the simulator's compiled searches
+    (:mod:`core2d.sim.kernels`) call it ray by ray.
 """
 from __future__ import annotations
 

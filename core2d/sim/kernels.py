@@ -32,7 +32,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-__all__ = ["cast", "fan", "sense_rays", "search", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
+__all__ = ["cast", "fan", "sense_rays", "search", "search_from", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
 
 OK, LOST, JAMMED = 0, 1, 2
 EVENTS = ("limit", "reached-body", "pushing", "done", "blocked", "lost", "jump", "reached",
@@ -95,6 +95,32 @@ def sense_rays(fn, ctx, jx, jy, theta, alpha, L, tol, out):  # pragma: no cover 
         else:
             _call(fn, ctx, jx + L * c, jy + L * s, c, s, tol, addr)
         out[k, 0], out[k, 1], out[k, 2] = res[0], res[1], res[2]
+
+
+@numba.njit(cache=True, nogil=True)
+def search_from(fn, ctx, ox, oy, theta0, rot_dir, max_angle, n, tol, par, work, count):
+    # pragma: no cover - compiled
+    """``Probe._search_from``: the first of ``n`` rays from ``(ox, oy)``
+    (offset by ``tol`` along each ray) at ``theta0 + rot_dir k step``
+    (k = 1 .. n, clipped to ``max_angle``) that hits, cast window by window
+    (``cap`` rays, one cast each); its offset ``k step`` (k from 0), or -1."""
+    L, step, cap = par[0], par[2], int(par[4])
+    res = np.empty(3)
+    addr = res.ctypes.data
+    for lo in range(0, n, cap):
+        hi = min(n, lo + cap)
+        first = -1
+        for k in range(lo + 1, hi + 1):
+            a = theta0 + rot_dir * min(k * step, max_angle)
+            c, s = np.cos(a), np.sin(a)
+            _call(fn, ctx, ox + tol * c, oy + tol * s, c, s, L, addr)
+            if first < 0 and res[0] < np.inf:
+                first = k - 1
+        count[0] += 1
+        count[1] += hi - lo
+        if first >= 0:
+            return first * step
+    return -1.0
 
 
 @numba.njit(cache=True, nogil=True, inline="always")

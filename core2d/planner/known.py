@@ -141,10 +141,9 @@ class KnownContour:
         if not len(self._lo):
             return np.zeros(0, dtype=np.int64)
         r = r + _margin(r, p, p)
-        ok = ((self._lo - r <= p) & (self._hi + r >= p)).all(axis=1)
-        if ok.all():
-            return np.arange(len(self._a))
-        return np.flatnonzero(ok[self._piece])
+        out = np.empty(len(self._piece), dtype=np.int64)
+        return out[:_near_segments(float(p[0]), float(p[1]), r, self._lo, self._hi,
+                                   self._piece, out)]
 
     def _append(self, pl, i) -> None:
         """Append the segments of piece ``i`` (amortised: buffers grow 2x)."""
@@ -349,6 +348,22 @@ def _point_segments(p, a, b) -> np.ndarray:
     out = np.empty(len(a))
     _project(np.asarray(p, np.float64), a, b, np.empty(len(a)), out)
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _near_segments(px, py, r, lo, hi, piece, out):  # pragma: no cover - compiled
+    """Segments (ascending, into ``out``; their count returned) of the pieces
+    whose box ``lo``, ``hi`` (k, 2) lies within ``r`` of (px, py)."""
+    ok = np.empty(lo.shape[0], dtype=np.bool_)
+    for i in range(lo.shape[0]):
+        ok[i] = (lo[i, 0] - r <= px and lo[i, 1] - r <= py and hi[i, 0] + r >= px
+                 and hi[i, 1] + r >= py)
+    m = 0
+    for j in range(piece.shape[0]):
+        if ok[piece[j]]:
+            out[m] = j
+            m += 1
+    return m
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

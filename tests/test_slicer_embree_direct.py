@@ -45,3 +45,18 @@ def test_direct_scene_of_nothing_misses():
     out = np.zeros(3)
     _PROTO(ray_function())(scene.context.ctypes.data, 0.0, 0.0, 1.0, 0.0, 1e9, out.ctypes.data)
     assert np.isinf(out[0]) and np.isnan(out[1:]).all()
+
+
+def test_without_a_direct_library_the_contact_has_no_ray_function(monkeypatch):
+    """No Embree 4 library to call: ``ray_kernel`` is None and the probe keeps
+    to ``cast`` (the same answers, the Python search)."""
+    import slicer.embree_contact as ec
+    from core2d import sense_slice
+
+    monkeypatch.setattr(ec, "ray_function", lambda: 0)
+    cut = slice_mesh(meshes.load("fig17_pocket"), axis="z", count=1)[0]
+    contact = cut.contact("embree")
+    assert contact.ray_kernel is None
+    center, radius = cut.bounding_circle()
+    res = sense_slice(contact, (center, radius + 1.0), 1.0, max_motions=300)
+    assert res.stats.motions > 50 and res.w1

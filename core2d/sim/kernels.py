@@ -123,7 +123,7 @@ def search_from(fn, ctx, ox, oy, theta0, rot_dir, max_angle, n, tol, par, work, 
     return -1.0
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True)
 def _first(d, n, want_blocked):  # pragma: no cover - compiled
     """Index of the first blocked (finite) or free (inf) ray of ``d[:n]``, or -1."""
     for i in range(n):
@@ -276,12 +276,12 @@ def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
     count[1] += n
     if batch[0, 0] == np.inf:
         found, a, d, x, y = search(fn, ctx, jx, jy, theta, rot_dir, max_a, True,
-                                   batch[:, 1:1 + n_along], par, work, count)
+                                   batch[:, 1:1 + n_along].copy(), par, work, count)
         if not found:
             return LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
     else:
         found, a, d, x, y = search(fn, ctx, jx, jy, theta, -rot_dir, max_b, False,
-                                   batch[:, 1 + n_along:], par, work, count)
+                                   batch[:, 1 + n_along:].copy(), par, work, count)
         if not found:
             return JAMMED, theta, np.inf, np.nan, np.nan
     return OK, a, d, x, y
@@ -371,7 +371,8 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
             break
         if nt + 1 >= len(trace):
             grown = np.empty((2 * len(trace), 2))
-            grown[:nt] = trace[:nt]
+            for k in range(nt):  # (no slice assignment: its shape checks cost compile time)
+                grown[k, 0], grown[k, 1] = trace[k, 0], trace[k, 1]
             trace = grown
         if has_stop and has_last and _distance_xy(sx, sy, lx, ly, qx - lx, qy - ly) <= tip_zone:
             trace[nt, 0], trace[nt, 1] = sx, sy

@@ -212,6 +212,7 @@ def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: n
     """
     fill = out_row.shape[0] > 0
     m = 0
+    far2, near2 = (atol * (1 + 1e-9)) ** 2, (atol * (1 - 1e-9)) ** 2
     for r in range(p.shape[0]):
         px, py, txr, tyr = p[r, 0], p[r, 1], tx[r], ty[r]
         k = txr * py - tyr * px
@@ -235,8 +236,10 @@ def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: n
             if atol == 0.0:  # hypot(q) > 0 without the hypot (finite q)
                 if not ((qx != 0.0 or qy != 0.0) and qx == qx and qy == qy):
                     continue
-            elif not math.hypot(qx, qy) > atol:
-                continue
+            else:  # hypot(q) > atol; the hypot only within 1e-9 of atol
+                q2 = qx * qx + qy * qy
+                if not q2 > far2 and (q2 < near2 or not math.hypot(qx, qy) > atol):
+                    continue
             out_row[m] = r
             out_y[m, 0] = txr * vay - tyr * vax
             out_x[m, 0] = txr * vax + tyr * vay

@@ -74,3 +74,20 @@ def test_widest_gap_matches_ray_sampling(seed):
     d = np.array([np.cos(angle[0]), np.sin(angle[0])])
     if width[0] > 10 * step:
         assert not _hits(p[0], d[None], a, b)[0]  # the gap's middle is free
+
+
+@pytest.mark.parametrize("scale", [1.0, 3.7, 1e-3])
+def test_compiled_tolerance_is_exact_at_its_boundary(scale):
+    """A segment exactly ``atol`` away is ignored, one ulp nearer too, one ulp
+    farther it blocks: the compiled path decides as the vectorised one."""
+    p = np.zeros((1, 2))
+    t = np.array([[-1.0, 0.0]])  # free half-plane: y > 0
+    a, b = np.array([[-1.0, 1.0]]) * scale, np.array([[2.0, 1.0]]) * scale  # a roof at y = scale
+    widths = []
+    for atol in (scale, np.nextafter(scale, 0.0), np.nextafter(scale, 2 * scale)):
+        fast = free_gaps(p, t, a, b, atol=atol)
+        slow = _vectorised(p, t, a, b, np.ones(1, dtype=bool), None, atol)
+        for x, y in zip(fast, slow):
+            np.testing.assert_array_equal(x, y)
+        widths.append(float(fast[0][0]))
+    assert widths[0] == widths[2] == pytest.approx(np.pi) and widths[1] < np.pi

@@ -128,7 +128,9 @@ class DirectScene:
     ----------
     context : (m,) float
         What :func:`ray_function` reads: the scene handle, the ray-hit record
-        and the segment table. Pass ``context.ctypes.data``.
+        (one: a scene serves one thread) and the segment table. Pass
+        ``context.ctypes.data``. The Embree scene is released with this
+        object, so keep it alive while the context is used.
     """
 
     def __init__(self, triangles, table):

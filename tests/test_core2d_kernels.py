@@ -110,3 +110,69 @@ def test_tip_bound_matches_shapely_on_random_regions():
             assert got == want
             cut_short += got < limit
     assert cut_short > 50  # the bound is not trivially the limit
+
+
+def _extruded_contact(loops):
+    """The Embree contact of a block loop extruded along z, cut at z = 1 in
+    the loop's own (x, y) frame."""
+    import trimesh
+    from shapely.geometry import Polygon as ShapelyPolygon
+
+    from slicer.embree_contact import EmbreeContact
+    from slicer.planes import SlicePlane
+
+    mesh = trimesh.creation.extrude_polygon(ShapelyPolygon(loops[0]), height=2.0)
+    z = np.array([0.0, 0.0, 1.0])
+    plane = SlicePlane(0, z.copy(), z.copy(), np.array([1.0, 0.0, 0.0]),
+                       np.array([0.0, 1.0, 0.0]), 1.0)
+    return EmbreeContact(mesh, plane)
+
+
+# The constructed trace events of tests/test_core2d_cases.py, each met on purpose.
+_EVENTS = {
+    "case2-3": ([(0, 60), (100, 60)], (50, 60), (-1, -1), (10, 60), (100, 30), None, True,
+                dict(pose_b=(-1, 0))),
+    "case3": ([(0, 30), (50, 30), (50, 70), (100, 70)], (45, 75), (-0.5, -np.sqrt(3) / 2),
+              (5, 30), (95, 70), 20, True, {}),
+    "case4": ([(0, 60), (40, 60), (40, 30), (70, 30), (70, 45), (55, 45), (55, 55), (100, 55)],
+              (45, 75), (np.sin(np.radians(60)), -np.cos(np.radians(60))), (5, 60), (95, 55),
+              20, False, {}),
+    "left": ([(0, 60), (30, 60), (40, 30), (70, 60), (100, 60)], (40, 60), (0, -1), (70, 60),
+             (30, 60), None, True, {}),
+}
+
+
+@pytest.mark.parametrize("case", sorted(_EVENTS))
+def test_kernels_meet_each_trace_event_as_the_python_path(case):
+    """Every event of the compiled micro-step loop (lost contact, the Case 3
+    guard, Case 4, the trace passing the other end) on a constructed slice
+    through the Embree backend: the compiled and the Python path record the
+    same event, trace, new areas and counters."""
+    from figure_scenes import WORKSPACE, block, place, pose_to
+
+    from core2d.planner.areas import Area
+    from core2d.planner.local_search import LocalResult, definition5
+    from core2d.planner.regions import G_region
+    from core2d.planner.tracing import trace_side
+
+    top, at, direction, a, b, length, toward_b, kw = _EVENTS[case]
+    contact = _extruded_contact(block(top))
+    assert contact.ray_kernel is not None
+    got = []
+    for model in (contact, _PythonPath(contact)):
+        probe = Probe(model, WORKSPACE, 1.0, length=length)
+        r = place(probe, at, np.asarray(direction, float) / np.linalg.norm(direction))
+        down = np.array([0.0, -1.0])
+        area = Area(np.asarray(a, float), np.asarray(b, float), pose_to(probe, a, down),
+                    pose_to(probe, b, kw.get("pose_b", down)))
+        local = LocalResult(r, r.tip_contact.point, *definition5(r), 0)
+        G = G_region(area.a, area.b, area.pose_a, area.pose_b)
+        lines, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, toward_b,
+                                          lambda: True)
+        got.append((cases, [np.asarray(pl).tolist() for pl in lines],
+                    [(k.rule, k.a.tolist(), k.b.tolist()) for k in new],
+                    probe.joint.tolist(), float(probe.theta),
+                    {k: getattr(probe.stats, k) for k in ("motions", "rays", "casts",
+                                                          "push_attempts", "joint_path")}))
+    assert case in got[0][0]  # the event under test is met
+    assert got[0] == got[1]

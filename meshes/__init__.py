@@ -30,6 +30,7 @@ from . import scenes_fields, scenes_profiles, scenes_solids  # noqa: F401  (regi
 from .errors import MeshError, MeshWarning
 from .geometry import to_trimesh
 from .loading import SUPPORTED_EXTENSIONS, load_file
+from .validate import check_finite, check_overlap, check_solid
 from .registry import Scene, describe, get, names, unknown_scene
 from .registry import build as _build
 from .report import format_report, mesh_report
@@ -47,6 +48,9 @@ __all__ = [
     "to_trimesh",
     "mesh_report",
     "format_report",
+    "check_finite",
+    "check_solid",
+    "check_overlap",
 ]
 
 
@@ -61,7 +65,8 @@ def build(name: str, **kwargs) -> Manifold:
     return _build(name, **kwargs)
 
 
-def load(name_or_path: str | os.PathLike, **kwargs) -> trimesh.Trimesh:
+def load(name_or_path: str | os.PathLike, drop_nonfinite: bool = False,
+         **kwargs) -> trimesh.Trimesh:
     """A scene by name, or a mesh file by path, as one :class:`trimesh.Trimesh`.
 
     Parameters
@@ -69,6 +74,9 @@ def load(name_or_path: str | os.PathLike, **kwargs) -> trimesh.Trimesh:
     name_or_path : str or path-like
         A name from :func:`names` (tried first) or a path to an
         ``.stl/.obj/.ply/.off/.glb`` file.
+    drop_nonfinite : bool
+        Files only: drop NaN / inf vertices and their faces (with a warning)
+        instead of raising :class:`MeshError`.
     **kwargs
         Scene parameters such as ``resolution``; not allowed for files.
 
@@ -82,13 +90,14 @@ def load(name_or_path: str | os.PathLike, **kwargs) -> trimesh.Trimesh:
     ------
     MeshError
         One-line reason: unknown name (with close matches), missing, empty,
-        corrupt or unsupported file, no faces, bad scene parameter.
+        corrupt or unsupported file, no faces, non-finite vertices, a flat
+        mesh, bad scene parameter.
 
     Warns
     -----
     MeshWarning
-        A file mesh that is not watertight (loaded anyway), or was inside
-        out (inverted).
+        A file mesh that is not watertight (loaded anyway), was inside
+        out (inverted), has overlapping bodies, or lost non-finite vertices.
     """
     if not isinstance(name_or_path, (str, os.PathLike)):
         raise MeshError(f"expected a scene name or a file path, got "
@@ -104,5 +113,5 @@ def load(name_or_path: str | os.PathLike, **kwargs) -> trimesh.Trimesh:
         if kwargs:
             raise MeshError(f"keyword arguments {sorted(kwargs)} apply only to "
                             f"built-in scenes, not to the file {path}")
-        return load_file(path)
+        return load_file(path, drop_nonfinite=drop_nonfinite)
     raise unknown_scene(name_or_path)

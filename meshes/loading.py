@@ -3,9 +3,11 @@
 Cleaning is deliberately conservative, so that a good file keeps its face
 count: vertices are welded (positions only, ignoring UVs and normals),
 faces that repeat a vertex index or duplicate another face are dropped, and
-unreferenced or non-finite vertices are removed. Zero-area faces with three
-distinct vertices are kept: CAD exports use such slivers to close
-T-junctions, and removing them would open a watertight mesh.
+unreferenced vertices are removed. Zero-area faces with three distinct
+vertices are kept: CAD exports use such slivers to close T-junctions, and
+removing them would open a watertight mesh. Non-finite vertices (NaN, inf)
+are an error unless the caller asks to drop them with their faces, and a
+flat mesh is an error (:mod:`meshes.validate`).
 """
 from __future__ import annotations
 
@@ -17,6 +19,7 @@ import numpy as np
 import trimesh
 
 from .errors import MeshError, MeshWarning, one_line
+from .validate import check_finite, check_overlap, check_solid
 
 __all__ = ["SUPPORTED_EXTENSIONS", "load_file", "clean", "open_edge_count"]
 
@@ -24,13 +27,16 @@ __all__ = ["SUPPORTED_EXTENSIONS", "load_file", "clean", "open_edge_count"]
 SUPPORTED_EXTENSIONS: tuple[str, ...] = (".stl", ".obj", ".ply", ".off", ".glb")
 
 
-def load_file(path: str | os.PathLike) -> trimesh.Trimesh:
+def load_file(path: str | os.PathLike, drop_nonfinite: bool = False) -> trimesh.Trimesh:
     """Load a mesh file; several geometries (GLB scenes) are concatenated.
 
     Parameters
     ----------
     path : str or path-like
         An existing ``.stl``, ``.obj``, ``.ply``, ``.off`` or ``.glb`` file.
+    drop_nonfinite : bool
+        Drop NaN / inf vertices and the faces that use them (with a warning)
+        instead of raising.
 
     Returns
     -------
@@ -41,12 +47,14 @@ def load_file(path: str | os.PathLike) -> trimesh.Trimesh:
     Raises
     ------
     MeshError
-        Missing, empty, unreadable or unsupported file, or no faces.
+        Missing, empty, unreadable or unsupported file, no faces, non-finite
+        vertices (unless dropped), or a flat mesh.
 
     Warns
     -----
     MeshWarning
-        The mesh is not watertight, or it was inside out and got inverted.
+        The mesh is not watertight, it was inside out and got inverted, its
+        bodies overlap, or non-finite vertices were dropped.
     """
     p = Path(path)
     if not p.exists():
@@ -73,11 +81,13 @@ def load_file(path: str | os.PathLike) -> trimesh.Trimesh:
         raise MeshError(f"no faces in {p} ({nverts} vertices, {len(parts)} "
                         f"geometries): not a surface mesh, or corrupt")
     mesh = meshes[0] if len(meshes) == 1 else trimesh.util.concatenate(meshes)
-    mesh = clean(mesh)
+    mesh = clean(check_finite(mesh, p.name, drop=drop_nonfinite))
     if len(mesh.faces) == 0:
         raise MeshError(f"no faces left in {p} after dropping degenerate faces")
+    check_solid(mesh, p.name)
     mesh.metadata["file_name"] = p.name
     _check_closed(mesh, p.name)
+    check_overlap(mesh, p.name)
     return mesh
 
 
@@ -89,7 +99,6 @@ def clean(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
                           process=False, metadata=dict(mesh.metadata))
     if getattr(mesh, "units", None):
         out.units = mesh.units
-    out.remove_infinite_values()
     out.merge_vertices(merge_tex=True, merge_norm=True)
     f = out.faces
     out.update_faces((f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2]))

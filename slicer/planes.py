@@ -158,8 +158,15 @@ _AXES = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
 def parse_axis(axis) -> np.ndarray:
     """Axis name, ``"nx,ny,nz"`` string or (3,) vector -> (3,) unit normal.
 
+    Only the direction counts: a vector whose length would overflow or
+    underflow is scaled by its largest component first, so ``"1e300,1e300,0"``
+    and ``"1e-200,1e-200,0"`` both give the unit vector of ``"1,1,0"``; only an
+    exactly zero vector is refused.
+
     >>> parse_axis("y").tolist(), parse_axis("0,0,-2").tolist()
     ([0.0, 1.0, 0.0], [0.0, 0.0, -1.0])
+    >>> parse_axis("1e-30,0,0").tolist()
+    [1.0, 0.0, 0.0]
     """
     if isinstance(axis, str):
         key = axis.strip().lower()
@@ -177,9 +184,13 @@ def parse_axis(axis) -> np.ndarray:
         vec = np.asarray(axis, dtype=np.float64).reshape(-1)
     if vec.shape != (3,) or not np.all(np.isfinite(vec)):
         raise ValueError(f"axis must have 3 finite components, got {axis!r}")
-    norm = float(np.linalg.norm(vec))
-    if norm == 0.0:
+    big = float(np.max(np.abs(vec)))
+    if big == 0.0:
         raise ValueError(f"axis normal is zero: {axis!r}")
+    norm = float(np.linalg.norm(vec))
+    if not 1e-150 < norm < 1e150:  # the square of a component over- or underflows
+        vec = vec / big
+        norm = float(np.linalg.norm(vec))
     return vec / norm
 
 

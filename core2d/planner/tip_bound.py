@@ -30,6 +30,8 @@ import numba
 import numpy as np
 import shapely
 
+from core2d.planner.robot import Robot
+
 __all__ = ["tip_bound", "polygon_rings"]
 
 
@@ -49,7 +51,7 @@ def polygon_rings(geom) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(xy), np.cumsum([len(r) for r in xy]).astype(np.int64)
 
 
-def tip_bound(probe, rings, a, b, theta, rot_dir, limit) -> float:
+def tip_bound(probe: Robot, rings, a, b, theta, rot_dir, limit) -> float:
     """Theorem 3: the largest swing (<= ``limit``) from ``theta`` towards
     ``rot_dir`` (+1 ccw, -1 cw) keeping the tip in T_i^(j) cap V_i cap G_i
     or beyond it only across L_{A_i}^{B_i}.
@@ -58,7 +60,7 @@ def tip_bound(probe, rings, a, b, theta, rot_dir, limit) -> float:
     """
     if limit <= 0:
         return 0.0
-    n = max(4, int(limit / probe.fan_step))
+    n = max(4, int(limit / probe.resolution.fan_angle(probe.length)))
     k = _first_bad(float(probe.joint[0]), float(probe.joint[1]), probe.length, float(theta),
                    float(rot_dir * limit), n, float(a[0]), float(a[1]), float(b[0]),
                    float(b[1]), rings[0], rings[1])

@@ -82,7 +82,7 @@ def _tip_bound_reference(probe, G, a, b, theta, rot_dir, limit):
     """Theorem 3 on the whole arc with shapely and numpy (the former path)."""
     import shapely
 
-    n = max(4, int(limit / probe.fan_step))
+    n = max(4, int(limit / probe.resolution.fan_angle(probe.length)))
     k = np.arange(1, n + 1)
     angs = theta + rot_dir * limit * k / n
     tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)

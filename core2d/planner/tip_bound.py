@@ -4,7 +4,8 @@ During the bisection the probe swings about its joint P_i^(j); Theorem 3
 keeps the tip inside T_i^(j) cap V_i cap G_i, or lets it beyond only
 across L_{A_i}^{B_i}. :func:`tip_bound` finds the largest swing that does,
 checking the tip's arc at the fan spacing: a swing of ``limit`` is cut into
-``n = max(4, limit / fan_step)`` steps and the first step whose tip is
+``n = max(4, limit / fan_angle)`` steps (:meth:`Resolution.fan_angle
+<core2d.resolution.Resolution.fan_angle>`) and the first step whose tip is
 
 * in V_i (Definition 3, the free side of A_iB_i) but outside G_i, or
 * outside V_i without the probe crossing the lid A_iB_i,

@@ -3,6 +3,10 @@
 Both engines (:mod:`core2d.sim.search` in Python, :mod:`core2d.sim.kernels`
 compiled) end a settle and a compliant trace with the same named codes, and
 cast their fans in the same windows.
+
+The kernels freeze these values when numba compiles them, and numba's cache
+is keyed on ``kernels.py`` alone: after changing a value here, touch
+``core2d/sim/kernels.py`` (or delete its ``__pycache__``) so they recompile.
 """
 from __future__ import annotations
 

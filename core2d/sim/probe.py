@@ -65,11 +65,12 @@ class Probe:
         self.length = float(length if length is not None else 4.0 * self.radius)
         self.stats = SenseStats()
         self.engine = make_engine(contact, self.stats, self.length, res)
-        # the engine's angular fan spacing and resolution, and the tip zone:
-        # contacts closer than eps/2 are one contact at the paper's resolution
-        # (§3.2: the contour is smooth at the eps level); near the tip they
-        # are the tip's contact (a probe lying at a grazing angle).
-        self.fan_step, self.ang_tol = self.engine.fan_step, self.engine.ang_tol
+        # the angular fan spacing and resolution of the searches, and the tip
+        # zone: contacts closer than eps/2 are one contact at the paper's
+        # resolution (§3.2: the contour is smooth at the eps level); near the
+        # tip they are the tip's contact (a probe lying at a grazing angle).
+        self.fan_step = res.fan_angle(self.length)
+        self.ang_tol = res.angle_tol(self.length)
         self.tip_zone = res.tip_zone
         self.joint = self.center + np.array([0.0, self.length + 2 * self.radius])
         self.theta = -np.pi / 2

@@ -12,10 +12,14 @@ by ``tests/test_core2d_walls.py``):
   result against the true contour. Never seen by the planner.
 
 :func:`sense_slice` (:mod:`core2d.sense`) puts the simulator and the planner
-together; :mod:`core2d.planar`, :mod:`core2d.readings` and
-:mod:`core2d.result` are the plain data and maths they share.
+together; :mod:`core2d.planar`, :mod:`core2d.readings`,
+:mod:`core2d.resolution` (every tolerance derived from eps and tol) and
+:mod:`core2d.result` are the plain data and maths they share. The planner
+is typed against the probe protocol :class:`core2d.planner.robot.Robot`,
+which the simulator's :class:`~core2d.sim.probe.Probe` implements.
 """
 from core2d.readings import Contact, Reading
+from core2d.resolution import Resolution
 from core2d.result import AreaRecord, SenseStats, SliceResult
 from core2d.sense import sense_slice
 from core2d.sim.contact import ContactModel
@@ -23,5 +27,5 @@ from core2d.sim.probe import Probe
 
 __all__ = [
     "ContactModel", "Probe", "Contact", "Reading", "sense_slice",
-    "SliceResult", "SenseStats", "AreaRecord",
+    "SliceResult", "SenseStats", "AreaRecord", "Resolution",
 ]

@@ -11,6 +11,7 @@ from __future__ import annotations
 from core2d.planner.finger import finger_probe
 from core2d.planner.run import explore
 from core2d.result import SliceResult
+from core2d.sim.contact import ContactModel
 from core2d.sim.probe import Probe
 
 __all__ = ["sense_slice", "METHODS"]
@@ -18,9 +19,10 @@ __all__ = ["sense_slice", "METHODS"]
 METHODS = ("pulling", "finger")
 
 
-def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
-                max_motions=20000, max_areas=4000, bootstrap_count=12,
-                method="pulling", directions=32, spacing=None) -> SliceResult:
+def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: float | None = None,
+                tol: float | None = None, max_motions: int = 20000, max_areas: int = 4000,
+                bootstrap_count: int = 12, method: str = "pulling", directions: int = 32,
+                spacing: float | None = None) -> SliceResult:
     """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
@@ -30,7 +32,8 @@ def sense_slice(contact, workspace, eps, probe_length=None, tol=None,
         contains the slice (all the robot knows beforehand).
     eps : float -- the paper's epsilon (W2 threshold, smoothness scale).
     probe_length : float, optional -- default 2 x workspace diameter.
-    tol : float, optional -- contact resolution, default eps / 20.
+    tol : float, optional -- contact resolution, default eps / 20
+        (:class:`core2d.resolution.Resolution` derives every tolerance from both).
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
     method : {'pulling', 'finger'} -- the paper's algorithm, or straight

@@ -16,7 +16,7 @@ from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import substring
 
 from core2d.planner.areas import Area
-from core2d.planner.run import Budget, _Run
+from core2d.planner.run import Budget, Exploration
 from core2d.sim.probe import Probe
 from core2d.planner.regions import Posture
 from slicer.exact import ExactContact
@@ -118,11 +118,11 @@ def vertical_area(probe, a, b, **kw) -> Area:
 def new_run(probe):
     """The planner's per-slice state without the bootstrap: areas added by
     hand are processed by the flowchart of Fig. 16."""
-    return _Run(probe, probe.eps, Budget(probe))
+    return Exploration(probe, probe.eps, Budget(probe))
 
 
 def run_one(probe, area):
-    """Process ``area`` (only it, not its children); returns the _Run."""
+    """Process ``area`` (only it, not its children); returns the Exploration."""
     run = new_run(probe)
     run.add(area)
     run.process(run.queue.popleft())

@@ -277,7 +277,7 @@ def test_fig15_escape_splits_the_area_at_the_new_contact():
     probe = make_probe(loops)
     area = vertical_area(probe, (30, 60), (70, 60), escape=True)
     run = run_one(probe, area)
-    assert probe.stats.escapes == 1
+    assert run.counters.escapes == 1
     assert run.result.areas[0].outcome == "split"
     kids = list(run.queue)
     assert [k.rule for k in kids] == ["escape", "escape"]
@@ -302,7 +302,7 @@ def test_fig15_same_area_again_requests_the_escape():
     assert same.escape and not other.escape
     run.queue.popleft()
     run.process(same)
-    assert probe.stats.escapes == 1
+    assert run.counters.escapes == 1
     assert [r.rule for r in run.result.areas[-2:]] == ["escape", "escape"]
 
 
@@ -363,7 +363,7 @@ def test_fig15_endless_escapes_still_bring_the_shape_in_relief():
     assert not run.queue
     leaves = [r for r in run.result.areas if r.outcome != "split"]
     assert leaves and all(r.outcome == "W2" and r.note.startswith("Dist") for r in leaves)
-    assert probe.stats.escapes == len(run.result.areas) - len(leaves)
+    assert run.counters.escapes == len(run.result.areas) - len(leaves)
     segs = run.result.w2
     assert all(np.linalg.norm(s[1] - s[0]) < EPS for s in segs)
     assert _on_contour(loops, segs) < 1e-9

@@ -15,6 +15,9 @@ import meshes
 from core2d import sense_slice
 from core2d.planner.tip_bound import polygon_rings, tip_bound
 from core2d.sim import kernels
+from core2d.sim.codes import WINDOWS
+from core2d.sim.compiled import CompiledEngine
+from core2d.sim.search import PythonEngine
 from core2d.sim.probe import Probe
 from slicer import slice_mesh
 from slicer.embree_direct import available
@@ -50,6 +53,8 @@ def _cut(name, index, count):
 def test_kernels_sense_exactly_as_the_python_path(name, index):
     contact, ws, eps = _cut(name, index, 4)
     assert contact.ray_kernel is not None
+    assert type(Probe(contact, ws, eps).engine) is CompiledEngine
+    assert type(Probe(_PythonPath(contact), ws, eps).engine) is PythonEngine
     fast = sense_slice(contact, ws, eps)
     slow = sense_slice(_PythonPath(contact), ws, eps)
     assert _geometry(fast) == _geometry(slow)
@@ -61,14 +66,14 @@ def test_kernels_sense_exactly_as_the_python_path(name, index):
 def test_kernel_windows_are_the_probe_offsets():
     contact, ws, eps = _cut("fig18_overhangs", 1, 4)
     probe = Probe(_PythonPath(contact), ws, eps)
-    cap = kernels._WINDOWS[-1]
+    cap = WINDOWS[-1]
     offs, st = np.empty(cap), np.zeros(4)
     for max_angle in (0.0, probe.fan_step / 3, 0.01, 1.0, 3.5, 7.0):
         st[:] = (0.0, 0.0, min(probe.fan_step, 2 * probe.ang_tol), 0.0)
         got = []
         while n := kernels._window(offs, st, max_angle, probe.fan_step, cap):
             got.append(offs[:n].copy())
-        want = list(probe._offsets(max_angle))
+        want = list(probe.engine._offsets(max_angle))
         assert len(got) == len(want)
         assert all(np.array_equal(g, w) for g, w in zip(got, want))
 
@@ -77,7 +82,7 @@ def _tip_bound_reference(probe, G, a, b, theta, rot_dir, limit):
     """Theorem 3 on the whole arc with shapely and numpy (the former path)."""
     import shapely
 
-    n = max(4, int(limit / probe.fan_step))
+    n = max(4, int(limit / probe.resolution.fan_angle(probe.length)))
     k = np.arange(1, n + 1)
     angs = theta + rot_dir * limit * k / n
     tips = probe.joint + probe.length * np.stack([np.cos(angs), np.sin(angs)], 1)

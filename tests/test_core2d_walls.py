@@ -7,6 +7,10 @@
   planner imports neither of the others; the simulator and the ground truth
   import neither the planner nor each other.
 * At run time only the simulator queries the contact model.
+* The planner is typed against the probe protocol
+  (:class:`core2d.planner.robot.Robot`), which the simulated probe
+  implements; it reads none of the simulator's internals and keeps its own
+  counters.
 """
 import ast
 import pathlib
@@ -21,10 +25,11 @@ from core2d import sense_slice
 
 CORE2D = pathlib.Path(__file__).resolve().parents[1] / "core2d"
 FORBIDDEN = {"trimesh", "embreex", "manifold3d", "pyvista", "vtk", "slicer", "meshes", "recon3d"}
-SHARED = {"core2d.planar", "core2d.readings", "core2d.result", "core2d.visibility"}
+SHARED = {"core2d.planar", "core2d.readings", "core2d.resolution", "core2d.result",
+          "core2d.visibility"}
 # room -> core2d modules it may import besides its own room and SHARED
 ALLOWED = {"sim": set(), "planner": set(), "truth": set()}
-SIMULATOR = {"core2d.sim.probe", "core2d.sim.compliance"}
+SIMULATOR = {"core2d.sim.search", "core2d.sim.compiled"}  # the ray engines
 
 
 def _imports(path):
@@ -68,8 +73,31 @@ def test_planner_modules_never_touch_the_contact_model():
         src = path.read_text()
         for pattern in (r"probe\.contact\b", r"\.cast\(", r"\._fan\(", r"\._search\(",
                         r"\._cast\(", r"\bray_kernel\b", r"\bkernels\b", r"\breachability\b",
-                        r"\bmetrics\b", r"\bloops\b"):
+                        r"\bmetrics\b", r"\bloops\b", r"\.engine\b",
+                        # simulator internals and counters: the planner keeps its own
+                        r"\bprobe\.(ang_tol|fan_step|tip_zone|stats|eps|tol)\b",
+                        r"\b_Run\b"):
             assert not re.search(pattern, src), f"core2d/planner/{path.name} matches {pattern!r}"
+
+
+def test_the_simulated_probe_implements_the_planner_protocol():
+    from core2d.planner.robot import Robot
+    from core2d.sim.probe import Probe
+
+    loop = np.array([[0, 0], [10, 0], [10, 5], [0, 5]], float)
+    probe = Probe(ExactContact([loop]), (np.array([5.0, 2.5]), 7.0), eps=1.0)
+    assert isinstance(probe, Robot)
+    missing = {name for name in dir(Robot) if not name.startswith("_")} - set(dir(probe))
+    assert not missing
+
+
+def test_no_compiled_branches_outside_the_engines():
+    """The ray engine is chosen once (core2d.sim.engine.make_engine)."""
+    for path in sorted((CORE2D / "sim").glob("*.py")):
+        src = path.read_text()
+        assert "_compiled" not in src, path.name
+        if path.name != "compiled.py":  # the compiled engine alone calls the kernels
+            assert "core2d.sim.kernels" not in set(_imports(path)), path.name
 
 
 class _Guarded:

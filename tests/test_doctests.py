@@ -18,6 +18,8 @@ MODULES = [
     "slicer.slices",
     "slicer.agreement",
     "core2d.planar",
+    "core2d.resolution",
+    "core2d.sim.codes",
     "core2d.visibility",
     "core2d.planner.known",
     "core2d.planner.local_search",

@@ -4,8 +4,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shapely.geometry.base import BaseGeometry
 
 from core2d.planner.regions import Posture
+from core2d.planner.robot import Robot
 
 __all__ = ["Area", "register", "pivot_G"]
 
@@ -41,7 +43,7 @@ class Area:
     depth: int = 0
     index: int = -1
     escape: bool = False
-    G: object = None  # G_i made at detection time (single probe detection)
+    G: BaseGeometry | None = None  # G_i made at detection time (single probe detection)
     zero_G: bool = False  # Area(G_i) = 0 verified at detection time
     lineage: tuple = ()
     stale: int = 0
@@ -72,7 +74,7 @@ def register(p_first, pose_first, p_end, pose_end, fin_is_A: bool, parent, rule,
                 pose_end, parent, rule, depth)
 
 
-def pivot_G(probe, body_face, max_angle=np.pi / 4):
+def pivot_G(probe: Robot, body_face, max_angle=np.pi / 4):
     """Definition 1 / Fig. 6(a): rotate the probe about its tip, away from
     the body contact on ``body_face``, until it touches; return G_i (the
     swept triangle, shapely Polygon) or None when Area(G_i) = 0 (Fig. 6(b)).
@@ -85,6 +87,6 @@ def pivot_G(probe, body_face, max_angle=np.pi / 4):
     angle = r.angle
     if abs(angle) > 0:
         probe.pivot(-rot, abs(angle))  # back along the swept, free path
-    if abs(angle) <= 4 * probe.ang_tol:
+    if abs(angle) <= 4 * probe.resolution.angle_tol(probe.length):
         return None
     return Polygon([tip, joint, r.joint])

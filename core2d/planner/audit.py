@@ -17,9 +17,14 @@ other. The robot uses only its own records.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from core2d.planner.areas import Area
+
+if TYPE_CHECKING:  # the planner state that drives this module; typing only
+    from core2d.planner.run import Exploration
 
 __all__ = ["audit", "MAX_AUDITS"]
 
@@ -27,13 +32,13 @@ __all__ = ["audit", "MAX_AUDITS"]
 MAX_AUDITS = 4
 
 
-def _registered(run, e, s) -> bool:
-    same = run.probe.tip_zone
+def _registered(run: Exploration, e, s) -> bool:
+    same = run.res.tip_zone
     return any(np.hypot(*(rec.a - e)) <= same and np.hypot(*(rec.b - s)) <= same
                for rec in run.result.areas)
 
 
-def audit(run) -> int:
+def audit(run: Exploration) -> int:
     """Register an area for every loose end of the map; returns how many."""
     if run.audits >= MAX_AUDITS:
         return 0

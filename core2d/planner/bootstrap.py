@@ -17,11 +17,12 @@ import numpy as np
 from core2d.planner.areas import Area
 from core2d.planar import unit
 from core2d.planner.regions import Posture, in_V
+from core2d.planner.robot import Robot
 
 __all__ = ["bootstrap"]
 
 
-def _probe_from(probe, angle):
+def _probe_from(probe: Robot, angle):
     """Insert radially from the circle point at ``angle``; (contact, posture)."""
     start = probe.center + probe.radius * unit(angle)
     probe.approach(start, -unit(angle))
@@ -32,7 +33,7 @@ def _probe_from(probe, angle):
     return c.point, Posture(r.joint, r.direction)
 
 
-def bootstrap(probe, count=12, far=None, max_depth=3):
+def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
     """Find the initial unknown areas of a closed slice.
 
     Parameters

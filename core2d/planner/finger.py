@@ -28,6 +28,7 @@ import time
 import numpy as np
 
 from core2d.planar import unit
+from core2d.planner.robot import Robot, final_stats
 from core2d.result import SliceResult
 
 __all__ = ["finger_probe", "probe_lines"]
@@ -72,7 +73,7 @@ def _oriented(a, b, t):
     return np.stack([a, b]) if right @ t >= 0 else np.stack([b, a])
 
 
-def finger_probe(probe, eps: float, directions: int = 32, spacing: float | None = None,
+def finger_probe(probe: Robot, eps: float, directions: int = 32, spacing: float | None = None,
                  max_motions: int = 20000) -> SliceResult:
     """Probe a closed slice with straight insertions on a grid (see module doc).
 
@@ -95,7 +96,7 @@ def finger_probe(probe, eps: float, directions: int = 32, spacing: float | None 
     touches = np.full((len(points), 2), np.nan)
     budget_hit = False
     for i, (p, t) in enumerate(zip(points, dirs)):
-        if probe.stats.motions + 2 > max_motions:
+        if probe.motions + 2 > max_motions:
             budget_hit = True
             break
         probe.approach(p, t)
@@ -112,7 +113,5 @@ def finger_probe(probe, eps: float, directions: int = 32, spacing: float | None 
             joined[i] = joined[i + 1] = True
     result.w1 = [touches[i][None].copy() for i in range(len(points))
                  if not joined[i] and not np.isnan(touches[i][0])]
-    stats = result.stats = probe.stats
-    stats.budget_hit = budget_hit
-    stats.seconds = time.perf_counter() - t0
+    result.stats = final_stats(probe, budget_hit=budget_hit, seconds=time.perf_counter() - t0)
     return result

@@ -21,9 +21,10 @@ import shapely
 from shapely.geometry import Point
 
 from core2d.planar import wrap
-from core2d.readings import TIP
 from core2d.planner.regions import G_region, V_polygon, common_point, polygonal
+from core2d.planner.robot import Robot
 from core2d.planner.tip_bound import polygon_rings, tip_bound
+from core2d.readings import TIP, Reading
 
 __all__ = ["initial_pass", "bisection", "definition5", "LocalResult"]
 
@@ -34,7 +35,7 @@ def _circle(cx, cy, radius):
     return Point(cx, cy).buffer(radius, 256).exterior
 
 
-def _start_point(probe, G, a, b):
+def _start_point(probe: Robot, G, a, b):
     """A point of L_{A0}^{B0} cap G_i cap V_i: the centre of the longest piece
     of the workspace circle inside G_i cap V_i; when the circle barely
     touches it (postures converging there), the point of G_i cap V_i farthest
@@ -44,7 +45,7 @@ def _start_point(probe, G, a, b):
         return None, GV
     ring = _circle(float(probe.center[0]), float(probe.center[1]), probe.radius)
     arc = ring.intersection(GV)
-    if not arc.is_empty and arc.length > probe.tol:
+    if not arc.is_empty and arc.length > probe.resolution.tol:
         line = max(getattr(arc, "geoms", [arc]), key=lambda g: g.length)
         return np.array(line.interpolate(0.5, normalized=True).coords[0]), GV
     pts = shapely.get_coordinates(GV)
@@ -53,7 +54,7 @@ def _start_point(probe, G, a, b):
     return np.asarray(far, float), GV
 
 
-def initial_pass(probe, area, G=None):
+def initial_pass(probe: Robot, area, G=None):
     """Theorem 1 insertion for ``area``.
 
     Returns ``(Reading, G_i, None)`` or ``(None, G_i, why)``. G_i defaults to
@@ -64,7 +65,7 @@ def initial_pass(probe, area, G=None):
     """
     if G is None:
         G = G_region(area.a, area.b, area.pose_a, area.pose_b)
-    if G.area <= probe.tol * max(area.dist, probe.tol):
+    if G.area <= probe.resolution.tol * max(area.dist, probe.resolution.tol):
         return None, G, "Area(G) = 0"
     start, GV = _start_point(probe, G, area.a, area.b)
     if start is None:
@@ -78,7 +79,7 @@ def initial_pass(probe, area, G=None):
             np.linalg.norm(aim - probe.center) >= probe.radius:
         aim = (area.a + area.b) / 2
     t = aim - start
-    if np.linalg.norm(t) < probe.tol:
+    if np.linalg.norm(t) < probe.resolution.tol:
         return None, G, "Area(G) = 0"
     probe.approach(start, t)
     r = probe.insert(2.5 * probe.radius)
@@ -97,7 +98,7 @@ class LocalResult:
     iterations : int.
     """
 
-    reading: object
+    reading: Reading
     point: np.ndarray
     Y1: int
     Y2: int
@@ -113,7 +114,7 @@ def _bounds(joint, theta, a, b):
     return ccw, cw
 
 
-def bisection(probe, area, G, reading, max_iter=60):
+def bisection(probe: Robot, area, G, reading, max_iter=60):
     """Bisection local concave point search from an initial tip contact.
 
     Rotation is constrained in a direction when the torque sensor reports it
@@ -123,15 +124,15 @@ def bisection(probe, area, G, reading, max_iter=60):
     r = reading
     last = r.tip_contact.point
     small = 0
-    G = polygon_rings(G.buffer(probe.tol))  # Theorem 3, tolerant to the contact resolution
+    G = polygon_rings(G.buffer(probe.resolution.tol))  # Theorem 3, tolerant to contact noise
     it = 0
     con_ccw = con_cw = False
     for it in range(1, max_iter + 1):
         ccw_lim, cw_lim = _bounds(probe.joint, probe.theta, area.a, area.b)
         ccw_lim = tip_bound(probe, G, area.a, area.b, probe.theta, 1, ccw_lim)
         cw_lim = tip_bound(probe, G, area.a, area.b, probe.theta, -1, cw_lim)
-        con_ccw = r.blocked_ccw or ccw_lim <= probe.ang_tol
-        con_cw = r.blocked_cw or cw_lim <= probe.ang_tol
+        con_ccw = r.blocked_ccw or ccw_lim <= probe.resolution.angle_tol(probe.length)
+        con_cw = r.blocked_cw or cw_lim <= probe.resolution.angle_tol(probe.length)
         if con_ccw and con_cw:
             break  # Fig. 10(a)/(c), or (b) with one side held by the boundary
         limit, rot = max(((ccw_lim, 1),) * (not con_ccw) + ((cw_lim, -1),) * (not con_cw))
@@ -145,7 +146,7 @@ def bisection(probe, area, G, reading, max_iter=60):
             return None
         moved = np.linalg.norm(tip.point - last)
         last = tip.point
-        small = small + 1 if moved < probe.tol else 0
+        small = small + 1 if moved < probe.resolution.tol else 0
         if small >= 2:
             con_ccw, con_cw = r.blocked_ccw or con_ccw, r.blocked_cw or con_cw
             break

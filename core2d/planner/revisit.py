@@ -51,13 +51,18 @@ narrower than eps -- finds a new contact, so such a lid is never W3.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from core2d.planner.areas import Area
 from core2d.planner.regions import Posture, near_probe
 
-__all__ = ["revisit", "finish", "revisit_one", "lid_like", "holds_lid", "closes_loop", "proof_lines", "passes",
-           "MAX_TRIES", "MAX_SWEEP"]
+if TYPE_CHECKING:  # the planner state that drives this module; typing only
+    from core2d.planner.run import Exploration
+
+__all__ = ["revisit", "finish", "lid_like", "closes_loop", "proof_lines", "MAX_TRIES",
+           "MAX_SWEEP"]
 
 #: spread passes (:func:`passes`) before the sweep at resolution eps
 MAX_TRIES = 6
@@ -95,12 +100,12 @@ def _sweep(lines, length, eps):
     return [(lines[i].point, lines[i].turned(0.25 + 0.5 * (n % 2))) for n, i in enumerate(picks)]
 
 
-def lid_like(run, area) -> bool:
+def lid_like(run: Exploration, area) -> bool:
     """Step 2: the lid crosses no recorded contour."""
-    return not run.known.crosses(area.a, area.b, run.probe.tip_zone)
+    return not run.known.crosses(area.a, area.b, run.res.tip_zone)
 
 
-def holds_lid(run, area) -> bool:
+def holds_lid(run: Exploration, area) -> bool:
     """Can the probe hold the lid as a posture? "A W3 lid is a posture the
     probe actually held": the single probe detection of Fig. 6, made on
     purpose. The probe is inserted from F along the lid's line (shifted tol
@@ -108,18 +113,18 @@ def holds_lid(run, area) -> bool:
     touches the far end and the probe passes the near one, both within
     eps/2. A lid laid through material -- across a wall the robot has not
     recorded -- stops the tip short of its far end."""
-    probe = run.probe
+    probe, same = run.probe, run.res.tip_zone
     a, b = np.asarray(area.a, float), np.asarray(area.b, float)
     u = (b - a) / area.dist
-    shift = probe.tol * np.array([-u[1], u[0]])  # towards V_i (Definition 3)
+    shift = run.res.tol * np.array([-u[1], u[0]])  # towards V_i (Definition 3)
     for near, far, d in ((a, b, u), (b, a, -u)):
         if not run.budget():
             return False
         probe.approach(far + shift, d)
         r = probe.insert(2.5 * probe.radius)
         tip = r.tip_contact
-        if tip is not None and np.hypot(*(tip.point - far)) <= probe.tip_zone and near_probe(
-                near, r.joint, r.direction, probe.length, probe.tip_zone):
+        if tip is not None and np.hypot(*(tip.point - far)) <= same and near_probe(
+                near, r.joint, r.direction, probe.length, same):
             return True
     return False
 
@@ -142,31 +147,29 @@ def closes_loop(known, area, tol, width, exclude=()) -> bool:
     return twice < 0 and -twice / 2 >= width * perimeter
 
 
-def proof_lines(run, area):
+def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
-    probe = run.probe
-    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=probe.tip_zone,
-                                min_gap=probe.ang_tol)
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=run.res.tip_zone,
+                                min_gap=run.angle_tol)
 
 
-def _near_end(probe, area, point) -> bool:
+def _near_end(run: Exploration, area, point) -> bool:
     """Within eps/2 of A_i or B_i: the same contact at the paper's resolution."""
-    return min(np.hypot(*(point - area.a)), np.hypot(*(point - area.b))) <= probe.tip_zone
+    return min(np.hypot(*(point - area.a)), np.hypot(*(point - area.b))) <= run.res.tip_zone
 
 
-def _new_contact(run, area, point) -> bool:
+def _new_contact(run: Exploration, area, point) -> bool:
     """Is ``point`` new: farther than eps/2 from A_i and B_i and from every
     contact an ancestor was split at by a pass, farther than 2 tol from the
     map, and not making a child that repeats the A and B of an ancestor
     (§4.4)?"""
-    probe = run.probe
-    if _near_end(probe, area, point) or run.known.distance(point) <= 2 * probe.tol:
+    same = run.res.tip_zone
+    if _near_end(run, area, point) or run.known.distance(point) <= run.res.near:
         return False
-    if area.seen and np.hypot(*(np.asarray(area.seen) - point).T).min() <= probe.tip_zone:
+    if area.seen and np.hypot(*(np.asarray(area.seen) - point).T).min() <= same:
         return False
-    same = probe.tip_zone
     for a, b in area.lineage:
         if (np.hypot(*(a - area.a)) <= same and np.hypot(*(b - point)) <= same) or (
                 np.hypot(*(a - point)) <= same and np.hypot(*(b - area.b)) <= same):
@@ -174,13 +177,13 @@ def _new_contact(run, area, point) -> bool:
     return True
 
 
-def revisit_one(run, area):
+def revisit_one(run: Exploration, area):
     """Look at one deferred area again (steps 1-3, 5 of the module doc).
 
     Returns a W3 reason when the lid passed its proof or its probing and
     waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
-    if known.covers(area.a, area.b, probe.tip_zone):
+    if known.covers(area.a, area.b, run.res.tip_zone):
         return run.close(area, "traced", "C_A^B traced through other areas")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
@@ -192,7 +195,7 @@ def revisit_one(run, area):
             plan += _sweep(lines, area.dist, run.eps)
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
-                                    margin=probe.tip_zone, min_gap=probe.ang_tol)
+                                    margin=run.res.tip_zone, min_gap=run.angle_tol)
         plan = passes(back, area.b, area.a) if back else []
     ends_only, escaped = True, False
     for point, direction in plan:
@@ -211,7 +214,7 @@ def revisit_one(run, area):
             return run.children(area, kids)
         area.tries += 1
         escaped |= c is None
-        ends_only &= c is not None and _near_end(probe, area, c.point)
+        ends_only &= c is not None and _near_end(run, area, c.point)
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "
@@ -223,7 +226,7 @@ def revisit_one(run, area):
     run.close(area, "unknown", note)
 
 
-def revisit(run) -> None:
+def revisit(run: Exploration) -> None:
     """Look at every deferred area of ``run`` again (see the module doc).
 
     Lids ready for W3 wait in ``run.waiting`` until they close a loop of the
@@ -245,7 +248,7 @@ def revisit(run) -> None:
     still = []
     for area, why in run.waiting:
         same_gap = [first + k for k, lid in enumerate(lids) if _same_gap(lid, area, run.eps)]
-        if closes_loop(joint, area, run.probe.tip_zone, run.eps / 4, same_gap):
+        if closes_loop(joint, area, run.res.tip_zone, run.eps / 4, same_gap):
             run.close(area, "W3", why)
         else:
             still.append((area, why))
@@ -259,7 +262,7 @@ def _same_gap(lid, area, eps) -> bool:
     return bool((d[0, 0] <= eps and d[1, 1] <= eps) or (d[0, 1] <= eps and d[1, 0] <= eps))
 
 
-def finish(run) -> None:
+def finish(run: Exploration) -> None:
     """Report the lids still waiting for a loop as unknown."""
     for area, why in run.waiting:
         run.close(area, "unknown", why + ", but it closes no loop of recorded contour")

@@ -37,13 +37,14 @@ from core2d.planner.audit import audit
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.regions import Posture, near_probe
+from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
+from core2d.planner.robot import PlannerCounters, Robot, final_stats
 from core2d.planner.tracing import attach_pivot_G, plan_sides, split_contact, trace_side
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
-__all__ = ["explore", "Budget"]
+__all__ = ["explore", "Exploration", "Budget"]
 
 #: generations in a row without new traced contour before §4.4 escape
 STALE = 3
@@ -52,13 +53,13 @@ STALE = 3
 class Budget:
     """Motion / area budget: a run always ends."""
 
-    def __init__(self, probe, max_motions=20000, max_areas=4000):
+    def __init__(self, probe: Robot, max_motions: int = 20000, max_areas: int = 4000):
         self.probe, self.max_motions, self.max_areas = probe, max_motions, max_areas
         self.areas = 0
         self.hit = False
 
     def __call__(self) -> bool:
-        ok = self.probe.stats.motions < self.max_motions and self.areas < self.max_areas
+        ok = self.probe.motions < self.max_motions and self.areas < self.max_areas
         self.hit |= not ok
         return ok
 
@@ -67,24 +68,25 @@ def _same(p, q, tol):
     return float(np.linalg.norm(np.asarray(p) - np.asarray(q))) <= tol
 
 
-def _reestablish(probe, pose):
+def _reestablish(probe: Robot, pose):
     """Bring the probe back along the line of ``pose`` until the tip touches."""
     probe.approach(pose.joint + probe.length * pose.direction, pose.direction)
     return probe.insert(2.5 * probe.radius)
 
 
-def _single_posture(area, probe):
+def _single_posture(area, probe: Robot):
     """The posture that touched both A_i and B_i (single probe detection,
     Fig. 6), or None. Registration may store two postures a step apart that
     both carry A and B -- that is still one detection."""
+    same = probe.resolution.tip_zone
     for pose in (area.pose_b, area.pose_a):
-        if all(near_probe(p, pose.joint, pose.direction, probe.length, probe.tip_zone)
+        if all(near_probe(p, pose.joint, pose.direction, probe.length, same)
                for p in (area.a, area.b)):
             return pose
     return None
 
 
-def _single_detection(probe, pose, area):
+def _single_detection(probe: Robot, pose, area):
     """Definition 1, Fig. 6(a), for an area whose A_i and B_i lie on one
     recorded posture: bring the probe back to that posture -- along its line
     shifted 2 tol away from the body contact, so the tip does not catch the
@@ -96,18 +98,40 @@ def _single_detection(probe, pose, area):
     along = [(np.asarray(p) - pose.joint) @ t for p in (area.a, area.b)]
     body_pt = (area.a, area.b)[int(np.argmin(along))]  # Def. 9: tip point is P_1st
     side = 1.0 if (np.asarray(body_pt) - pose.joint) @ n >= 0 else -1.0
-    shifted = Posture(pose.joint - side * 2 * probe.tol * n, t)
+    shifted = Posture(pose.joint - side * probe.resolution.near * n, t)
     if _reestablish(probe, shifted).tip_contact is None:
         return None, False
     return pivot_G(probe, RIGHT if side > 0 else LEFT), True
 
 
-class _Run:
-    """Per-slice state: the queue of areas, the deferred ones, the result and
-    the robot's own map of what it has recorded (:class:`KnownContour`)."""
+class Exploration:
+    """The planner's state on one slice, and the steps of Fig. 16 on it.
 
-    def __init__(self, probe, eps, budget):
+    :func:`explore` drives it; :mod:`core2d.planner.revisit` and
+    :mod:`core2d.planner.audit` work on it too, and tests drive single
+    areas through :meth:`add` and :meth:`process`.
+
+    Attributes
+    ----------
+    probe : Robot -- the probe commanded.
+    eps : float -- the paper's epsilon.
+    res : Resolution -- the probe's stated resolution (same-point radius
+        ``res.tip_zone``, ...); ``angle_tol`` its angular resolution.
+    budget : Budget
+    result : SliceResult -- W1, W2, W3, unknown and the A_iB_i log so far.
+    queue : deque of Area -- areas waiting, breadth first.
+    deferred : list of Area -- dead ends, looked at again by ``revisit``.
+    waiting : list of (Area, str) -- lids ready for W3, waiting to close a loop.
+    audits : int -- rounds of :func:`~core2d.planner.audit.audit` made.
+    known : KnownContour -- the robot's own map of what it has recorded.
+    counters : PlannerCounters -- what the planner counts itself.
+    """
+
+    def __init__(self, probe: Robot, eps: float, budget: Budget):
         self.probe, self.eps, self.budget = probe, eps, budget
+        self.res = probe.resolution
+        self.angle_tol = self.res.angle_tol(probe.length)
+        self.counters = PlannerCounters()
         self.result = SliceResult()
         self.queue = deque()
         self.deferred = []
@@ -149,7 +173,7 @@ class _Run:
         """Register ``kids`` of ``area``; §4.4 over the whole ancestry: a kid
         repeating the A and B of any ancestor, or the STALE-th generation in
         a row that traced less than eps of new contour, requests the escape."""
-        same = self.probe.tip_zone  # contacts closer than eps/2 are one contact
+        same = self.res.tip_zone  # contacts closer than eps/2 are one contact
         lineage = area.lineage + ((area.a, area.b),)
         stale = 0 if traced >= self.eps else area.stale + 1
         for kid in kids:
@@ -164,7 +188,8 @@ class _Run:
         probe, eps = self.probe, self.eps
         if area.dist < eps:
             return self.close(area, "W2", "Dist(A,B) < eps")
-        if self.known.covers(area.a, area.b, probe.tip_zone):
+        same = self.res.tip_zone
+        if self.known.covers(area.a, area.b, same):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)
@@ -179,10 +204,10 @@ class _Run:
             return self.defer(area, why)
         c = reading.tip_contact.point
         pose_c = Posture(reading.joint, reading.direction)
-        if _same(c, area.a, probe.tip_zone) or _same(c, area.b, probe.tip_zone):
+        if _same(c, area.a, same) or _same(c, area.b, same):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
-        if self.known.distance(c) <= 2 * probe.tol:
+        if self.known.distance(c) <= self.res.near:
             # contour the robot has recorded already (Ext, or Int traced through
             # other areas): nothing new to start the search from
             return self.defer(area, "Theorem 1 pass touched recorded contour")
@@ -200,15 +225,14 @@ class _Run:
         narrower than eps that the pivot about the tip cannot resolve, or
         Fig. 6(b) met inside a slot narrower than eps, where §3.2 fails) the
         area is deferred: :mod:`core2d.planner.revisit` tries those lines."""
-        probe = self.probe
-        if (lid_like(self, area) and closes_loop(self.known, area, probe.tip_zone, self.eps / 4)
+        if (lid_like(self, area) and closes_loop(self.known, area, self.res.tip_zone, self.eps / 4)
                 and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
         return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")
 
     def escape(self, area, c, pose_c, rule="escape"):
         """§4.4: split A_iB_i at the new contact found by the initial pass."""
-        self.probe.stats.escapes += rule == "escape"
+        self.counters.escapes += rule == "escape"
         d = area.depth + 1
         kids = [Area(area.a, c, area.pose_a, pose_c, area.index, rule, d),
                 Area(c, area.b, pose_c, area.pose_b, area.index, rule, d)]
@@ -251,14 +275,15 @@ class _Run:
         self.children(area, kids, traced)
 
 
-def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -> SliceResult:
+def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int = 4000,
+            bootstrap_count: int = 12) -> SliceResult:
     """Run the pulling-motion algorithm with ``probe`` until nothing is left.
 
     Parameters
     ----------
-    probe : object with the simulator's motions (approach, insert, swing,
-        turn_to, pivot, translate, trace, sense) and its joint pose; the
-        planner learns about the world only through the readings they return.
+    probe : Robot -- the motions, the joint pose and the stated constants
+        (:mod:`core2d.planner.robot`); the planner learns about the world
+        only through the readings the motions return.
     eps : float -- the paper's epsilon.
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
@@ -269,7 +294,7 @@ def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -
     """
     t0 = time.perf_counter()
     budget = Budget(probe, max_motions, max_areas)
-    run = _Run(probe, eps, budget)
+    run = Exploration(probe, eps, budget)
     for area in bootstrap(probe, bootstrap_count):
         run.add(area)
     while True:
@@ -284,8 +309,7 @@ def explore(probe, eps, max_motions=20000, max_areas=4000, bootstrap_count=12) -
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out
         run.close(area, "unknown", run.result.areas[area.index].note)
-    stats = run.result.stats = probe.stats
-    stats.areas = len(run.result.areas)
-    stats.budget_hit = budget.hit
-    stats.seconds = time.perf_counter() - t0
+    run.result.stats = final_stats(probe, escapes=run.counters.escapes,
+                                   areas=len(run.result.areas), budget_hit=budget.hit,
+                                   seconds=time.perf_counter() - t0)
     return run.result

@@ -4,7 +4,8 @@ During the bisection the probe swings about its joint P_i^(j); Theorem 3
 keeps the tip inside T_i^(j) cap V_i cap G_i, or lets it beyond only
 across L_{A_i}^{B_i}. :func:`tip_bound` finds the largest swing that does,
 checking the tip's arc at the fan spacing: a swing of ``limit`` is cut into
-``n = max(4, limit / fan_step)`` steps and the first step whose tip is
+``n = max(4, limit / fan_angle)`` steps (:meth:`Resolution.fan_angle
+<core2d.resolution.Resolution.fan_angle>`) and the first step whose tip is
 
 * in V_i (Definition 3, the free side of A_iB_i) but outside G_i, or
 * outside V_i without the probe crossing the lid A_iB_i,
@@ -30,6 +31,8 @@ import numba
 import numpy as np
 import shapely
 
+from core2d.planner.robot import Robot
+
 __all__ = ["tip_bound", "polygon_rings"]
 
 
@@ -49,7 +52,7 @@ def polygon_rings(geom) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(xy), np.cumsum([len(r) for r in xy]).astype(np.int64)
 
 
-def tip_bound(probe, rings, a, b, theta, rot_dir, limit) -> float:
+def tip_bound(probe: Robot, rings, a, b, theta, rot_dir, limit) -> float:
     """Theorem 3: the largest swing (<= ``limit``) from ``theta`` towards
     ``rot_dir`` (+1 ccw, -1 cw) keeping the tip in T_i^(j) cap V_i cap G_i
     or beyond it only across L_{A_i}^{B_i}.
@@ -58,7 +61,7 @@ def tip_bound(probe, rings, a, b, theta, rot_dir, limit) -> float:
     """
     if limit <= 0:
         return 0.0
-    n = max(4, int(limit / probe.fan_step))
+    n = max(4, int(limit / probe.resolution.fan_angle(probe.length)))
     k = _first_bad(float(probe.joint[0]), float(probe.joint[1]), probe.length, float(theta),
                    float(rot_dir * limit), n, float(a[0]), float(a[1]), float(b[0]),
                    float(b[1]), rings[0], rings[1])

@@ -17,8 +17,9 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.areas import pivot_G, register
-from core2d.readings import LEFT, RIGHT, TIP
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
+from core2d.planner.robot import Robot
+from core2d.readings import LEFT, RIGHT, TIP
 
 __all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal"]
 
@@ -56,12 +57,12 @@ def split_contact(q, area, G, joint_i):
     return q
 
 
-def _on_probe(point, probe) -> bool:
+def _on_probe(point, probe: Robot) -> bool:
     """Single probe detection test (Def. 9): is ``point`` on the probe now?"""
-    return near_probe(point, probe.joint, probe.direction, probe.length, probe.tip_zone)
+    return near_probe(point, probe.joint, probe.direction, probe.length, probe.resolution.tip_zone)
 
 
-def attach_pivot_G(area, probe, body_face):
+def attach_pivot_G(area, probe: Robot, body_face):
     """Generate G_i of a single probe detection now, while the probe is there."""
     G = pivot_G(probe, body_face)
     area.G, area.zero_G = G, G is None
@@ -75,7 +76,7 @@ def is_internal(p2, area, G, joint_i):
     return T_contains(joint_i, area.a, area.b, q) and not in_V(q, area.a, area.b)
 
 
-def trace_side(probe, area, G, joint_i, local, toward_B, budget):
+def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
     """Trace one side from D_i; returns (w1 polylines, new areas, cases, ends).
 
     The polylines are oriented like C_{A_i}^{B_i} (material on the right);

@@ -1,4 +1,4 @@
-"""Compliant tracing motion (§4.3): a guarded move of the simulator.
+"""Internal: the compliant tracing motion (§4.3), a guarded move of the simulator.
 
 The joint moves along a fixed direction v while a constant torque
 tau = tau0 sgn(v, t*) (clockwise positive, eq. 2) keeps the probe pressed
@@ -22,40 +22,40 @@ import math
 import numpy as np
 
 from core2d.readings import TIP
-from core2d.sim import kernels
+from core2d.sim.codes import Settle, TraceEvent
 
-__all__ = ["compliant_trace", "MAX_SETTLE"]
+__all__ = ["compliant_trace", "python_steps", "settle_plan", "MAX_SETTLE"]
 
 MAX_SETTLE = np.pi / 3  # largest swing the torque may cause in one step
 _MAX_YIELD = np.pi / 6
 
 
-def _settle(probe, joint, theta, rot_dir):
+def _settle(engine, joint, theta, rot_dir):
     """Pose reached on ``joint`` from ``theta`` under torque ``rot_dir``.
 
-    Returns ``(status, theta, contact)`` with status ``"ok"``, ``"lost"``
-    (swung MAX_SETTLE without touching) or ``"jammed"`` (no free angle
-    within _MAX_YIELD against the torque).
+    Returns ``(status, theta, contact)``, status a :class:`Settle`: ``OK``,
+    ``LOST`` (swung MAX_SETTLE without touching) or ``JAMMED`` (no free
+    angle within _MAX_YIELD against the torque).
 
     One batch holds the ray at ``theta`` and the first search window on
     both sides (with the torque, and against it): which of the two is
     needed depends on that first ray, and a window of 8 rays costs Embree
     less than a call.
     """
-    offsets, n_along, _ = probe._settle_offsets(MAX_SETTLE, _MAX_YIELD)
-    d, p = probe._fan(joint, theta + rot_dir * offsets)  # theta, along, then back
+    offsets, n_along, _ = engine.settle_offsets(MAX_SETTLE, _MAX_YIELD)
+    d, p = engine.fan(joint, theta + rot_dir * offsets)  # theta, along, then back
     if d[0] == np.inf:
         first = (d[1:1 + n_along], p[1:1 + n_along])
-        found = probe._search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True, first=first)
+        found = engine.search(joint, theta, rot_dir, MAX_SETTLE, want_blocked=True, first=first)
         if found is None:
-            return "lost", theta + rot_dir * MAX_SETTLE, None
+            return Settle.LOST, theta + rot_dir * MAX_SETTLE, None
     else:
         first = (d[1 + n_along:], p[1 + n_along:])
-        found = probe._search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False, first=first)
+        found = engine.search(joint, theta, -rot_dir, _MAX_YIELD, want_blocked=False, first=first)
         if found is None:
-            return "jammed", theta, None
+            return Settle.JAMMED, theta, None
     free, (d, p) = found
-    return "ok", free, probe._contact_at(d, p, rot_dir)
+    return Settle.OK, free, engine.contact_at(d, p, rot_dir)
 
 
 def _segment_distance(point, a, b) -> float:
@@ -71,13 +71,13 @@ def _distance_xy(px, py, ax, ay, abx, aby) -> float:
     return math.hypot(ax + s * abx - px, ay + s * aby - py)
 
 
-def _passes(probe, point, p, q) -> bool:
+def _passes(tip_zone, point, p, q) -> bool:
     """Did the tip, stepping from contact p to contact q, pass ``point``?
 
     Within eps/2 of the step (the tip zone): the paper's resolution -- a
     step's chord cuts a convex corner.
     """
-    return _segment_distance(point, p, q) <= probe.tip_zone
+    return _segment_distance(point, p, q) <= tip_zone
 
 
 def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
@@ -101,43 +101,46 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     Reading with ``event`` and the recorded tip ``trace``.
     """
     probe._motion()
+    res = probe.resolution
     v = np.asarray(v, float) / np.linalg.norm(v)
     rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
-    delta0 = probe.eps / 4 if delta is None else float(delta)
+    delta0 = res.fan_spacing if delta is None else float(delta)
     stop = None if stop_at is None else np.asarray(stop_at, float)
     leave = None if leave_at is None else np.asarray(leave_at, float)
     first = probe.sense()
     last = first.tip_contact
     leave_far = leave is not None and last is not None and float(
-        np.linalg.norm(last.point - leave)) > probe.tip_zone
-    steps = _steps if probe._compiled is None else _steps_compiled
-    event, trace, before, primary = steps(probe, v, rot_dir, delta0, max_dist, max_steps,
-                                          guard_push, last, stop, leave if leave_far else None)
+        np.linalg.norm(last.point - leave)) > res.tip_zone
+    event, trace, before, primary = probe.engine.trace_steps(
+        probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop,
+        leave if leave_far else None)
     kw = dict(trace=np.array(trace).reshape(-1, 2), before_joint=before[0].copy(),
               before_direction=np.array(before[1], dtype=float))
     if primary is not None:
         kw["primary"] = primary
-    return probe.sense(event, **kw)
+    return probe.sense(event.label, **kw)
 
 
-def _steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop, leave):
-    """The micro-steps of a compliant trace (Python; any contact model).
+def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop,
+                 leave):
+    """The micro-steps of a compliant trace (the Python engine's; any contact model).
 
     Returns ``(event, trace points, (joint, direction) before the last
-    step, primary contact or None)``. ``leave`` is given only when the trace
-    starts farther than the tip zone from it.
+    step, primary contact or None)``, event a :class:`TraceEvent`. ``leave``
+    is given only when the trace starts farther than the tip zone from it.
     """
+    engine, stats, res = probe.engine, probe.stats, probe.resolution
     vx, vy = float(v[0]), float(v[1])
-    dmin = probe.tol / 2
-    jump = probe.eps / 2
-    near = 2 * probe.tol
+    dmin = res.stop_short
+    jump = res.tip_zone
+    near = res.near
     L = probe.length
     step = delta0
     travelled = 0.0
     sx, sy = (0.0, 0.0) if stop is None else (float(stop[0]), float(stop[1]))
     trace = [last.point] if last is not None else []
     before = (probe.joint.copy(), probe.direction)
-    event, primary = "limit", None
+    event, primary = TraceEvent.LIMIT, None
     prev_disp = None
     for _ in range(max_steps):
         c, s = math.cos(probe.theta), math.sin(probe.theta)
@@ -145,21 +148,21 @@ def _steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, sto
         if stop is not None:
             # the probe's segment: (jx + L c) - jx as _segment_distance computes it
             if _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx, (jy + L * s) - jy) <= near:
-                event = "reached-body"  # a part of the probe other than the tip
+                event = TraceEvent.REACHED_BODY  # a part of the probe other than the tip
                 break
         if vx * c + vy * s > 0:
             if guard_push:  # Case 3: the guard intercepts a pushing step
-                probe.stats.push_attempts += 1
-                event = "pushing"
+                stats.push_attempts += 1
+                event = TraceEvent.PUSHING
                 break
-            probe.stats.pushes += 1
+            stats.pushes += 1
         if travelled >= max_dist:
-            event = "done"
+            event = TraceEvent.DONE
             break
         h = min(step, max_dist - travelled)
         joint = np.array((jx + h * vx, jy + h * vy))  # probe.joint + h v
-        status, theta, contact = _settle(probe, joint, probe.theta, rot_dir)
-        sliding = status == "ok" and contact.face == TIP and last is not None
+        status, theta, contact = _settle(engine, joint, probe.theta, rot_dir)
+        sliding = status == Settle.OK and contact.face == TIP and last is not None
         if sliding:
             q, o = contact.point, last.point
             disp = math.hypot(float(q[0]) - float(o[0]), float(q[1]) - float(o[1]))
@@ -175,27 +178,27 @@ def _steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, sto
                 step = h / 2
                 continue
         prev_disp = None
-        if status == "jammed":
-            event = "blocked"
+        if status == Settle.JAMMED:
+            event = TraceEvent.BLOCKED
             break
         before = (probe.joint, (c, s))
-        probe.stats.joint_path += h
+        stats.joint_path += h
         travelled += h
         probe.joint, probe.theta = joint, theta
-        if status == "lost":
-            event = "lost"
+        if status == Settle.LOST:
+            event = TraceEvent.LOST
             break
         if not continuous:
-            event, primary = "jump", contact
+            event, primary = TraceEvent.JUMP, contact
             break
         if stop is not None and last is not None and _passes(
-                probe, stop, last.point, contact.point):
+                jump, stop, last.point, contact.point):
             trace.append(stop)
-            event = "reached"  # the tip passed P_fin during this step
+            event = TraceEvent.REACHED  # the tip passed P_fin during this step
             break
-        if leave is not None and _passes(probe, leave, last.point, contact.point):
+        if leave is not None and _passes(jump, leave, last.point, contact.point):
             trace.append(leave)
-            event = "left"  # the tip passed the other end of the area
+            event = TraceEvent.LEFT  # the tip passed the other end of the area
             break
         last = contact
         trace.append(contact.point)
@@ -203,30 +206,7 @@ def _steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, sto
     return event, trace, before, primary
 
 
-def _steps_compiled(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last, stop,
-                    leave):
-    """:func:`_steps` in compiled code (:func:`core2d.sim.kernels.trace_steps`),
-    for a contact model with a ray function: the same steps and rays."""
-    pose = np.array((probe.joint[0], probe.joint[1], probe.theta, probe.stats.joint_path))
-    motion = (float(v[0]), float(v[1]), float(rot_dir), float(delta0), probe.tol / 2,
-              probe.eps / 2, 2 * probe.tol, float(max_dist), float(max_steps),
-              1.0 if guard_push else 0.0)
-    marks = np.zeros(9)
-    for k, point in ((0, None if last is None else last.point), (3, stop), (6, leave)):
-        if point is not None:
-            marks[k:k + 3] = (1.0, point[0], point[1])
-    code, trace, before, primary = probe._run_kernel(
-        kernels.trace_steps, pose, motion, marks, _settle_plan(probe))
-    probe.joint, probe.theta = pose[:2].copy(), float(pose[2])
-    probe.stats.joint_path = float(pose[3])
-    if not np.isnan(primary[0]):
-        primary = probe._contact_at(primary[0], primary[1:].copy(), rot_dir)
-    else:
-        primary = None
-    return kernels.EVENTS[code], trace, (before[:2], before[2:]), primary
-
-
-def _settle_plan(probe):
-    """The settle's first batch and both searches' reach, for the kernels."""
-    offsets, n_along, _ = probe._settle_offsets(MAX_SETTLE, _MAX_YIELD)
+def settle_plan(engine):
+    """The settle's first batch and both searches' reach (for the kernels)."""
+    offsets, n_along, _ = engine.settle_offsets(MAX_SETTLE, _MAX_YIELD)
     return offsets, n_along, MAX_SETTLE, _MAX_YIELD

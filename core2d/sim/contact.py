@@ -22,8 +22,8 @@ normals : (n, 2) float
 
 One call is one batch (one Embree query for the Embree backend). Rays whose
 origin lies exactly on the contour have no defined answer: callers step off
-the surface first. Implementations live in :mod:`slicer` (Embree and exact);
-core2d never imports them.
+the surface first. Implementations live in :mod:`slicer` (Embree -- through
+embreex or called directly --, trimesh and exact); core2d never imports them.
 
 Two optional members make the simulator faster without changing an answer:
 
@@ -33,8 +33,8 @@ Two optional members make the simulator faster without changing an answer:
 ``ray_kernel -> (address, context) or None``
     A C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)`` answering one
     ray as ``cast`` does (``out[:3] = distance, x, y``) and the array whose
-    data pointer is ``ctx``: the simulator's compiled searches
-    (:mod:`core2d.sim.kernels`) call it ray by ray.
+    data pointer is ``ctx``: with it the probe's ray engine is the compiled
+    one (:mod:`core2d.sim.engine`), whose kernels call it ray by ray.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Compiled contact resolution of the probe simulator (§3.2, §4.3), numba.
+"""Internal: compiled contact resolution of the probe simulator (§3.2, §4.3), numba.
 
 The simulator resolves a contact by bisection: a fan of rays from the joint,
 then finer fans inside the bracket where the probe turns from free to
@@ -6,10 +6,16 @@ blocked, until the bracket is below the angular resolution. In Python each
 fan costs a call into the contact model, ~5 us however few its rays, and a
 compliant trace makes one settle per joint micro-step: the per-call cost, not
 the rays, was most of the sensing time. These kernels run the same searches
-(:meth:`core2d.sim.probe.Probe._search`, ``_refine``,
-:func:`core2d.sim.compliance._settle` and the micro-step loop of
-:func:`core2d.sim.compliance.compliant_trace`) in compiled code, calling a
-contact model's *ray function* once per ray.
+of the Python engine (:class:`core2d.sim.search.PythonEngine`: ``search``,
+``_refine``, ``search_from``; :func:`core2d.sim.compliance._settle` and the
+micro-step loop :func:`core2d.sim.compliance.python_steps`) in compiled code,
+calling a contact model's *ray function* once per ray. They are driven by
+:class:`core2d.sim.compiled.CompiledEngine`; the event and settle codes are
+the named ones of :mod:`core2d.sim.codes`, shared with the Python engine.
+
+Arrays the searches share: ``par = (L, ang_tol, fan_step, tip_zone, window
+cap)``; ``work`` (5, cap) float scratch; ``count`` (4,) int64 -- casts,
+rays, pushes, push attempts -- incremented in place.
 
 A ray function is any C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)``
 writing ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), given
@@ -32,14 +38,11 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-__all__ = ["cast", "fan", "sense_rays", "search", "search_from", "settle", "trace_steps", "EVENTS", "OK", "LOST", "JAMMED"]
+from core2d.sim.codes import REFINE as _REFINE
+from core2d.sim.codes import WINDOWS as _WINDOWS
+from core2d.sim.codes import Settle, TraceEvent
 
-OK, LOST, JAMMED = 0, 1, 2
-EVENTS = ("limit", "reached-body", "pushing", "done", "blocked", "lost", "jump", "reached",
-          "left")
-"""Event names of :func:`trace_steps`, by code."""
-_REFINE = 16
-_WINDOWS = (8, 32, 128, 512, 2048, 8192)  # Probe's windows at the fan spacing
+__all__ = ["cast", "fan", "sense_rays", "search", "search_from", "settle", "trace_steps"]
 
 
 @intrinsic
@@ -100,10 +103,11 @@ def sense_rays(fn, ctx, jx, jy, theta, alpha, L, tol, out):  # pragma: no cover 
 @numba.njit(cache=True, nogil=True)
 def search_from(fn, ctx, ox, oy, theta0, rot_dir, max_angle, n, tol, par, work, count):
     # pragma: no cover - compiled
-    """``Probe._search_from``: the first of ``n`` rays from ``(ox, oy)``
+    """``PythonEngine.search_from``: the first of ``n`` rays from ``(ox, oy)``
     (offset by ``tol`` along each ray) at ``theta0 + rot_dir k step``
     (k = 1 .. n, clipped to ``max_angle``) that hits, cast window by window
-    (``cap`` rays, one cast each); its offset ``k step`` (k from 0), or -1."""
+    (``cap`` rays, one cast each); its offset ``k step`` (k from 0), or -1.
+    ``work`` is not used (the common signature); ``count[:2]`` is incremented."""
     L, step, cap = par[0], par[2], int(par[4])
     res = np.empty(3)
     addr = res.ctypes.data
@@ -135,7 +139,7 @@ def _first(d, n, want_blocked):  # pragma: no cover - compiled
 @numba.njit(cache=True, nogil=True)
 def _refine(fn, ctx, jx, jy, a_before, a_after, hit, want_blocked, par, work, count):
     # pragma: no cover - compiled
-    """``Probe._refine``: shrink [a_before, a_after] to ang_tol; returns the
+    """``PythonEngine._refine``: shrink [a_before, a_after] to ang_tol; returns the
     resolved angle and the blocked side's ``(d, x, y)``."""
     L, ang_tol = par[0], par[1]
     ang, d, px, py = work[0], work[1], work[2], work[3]
@@ -174,7 +178,7 @@ def _refine(fn, ctx, jx, jy, a_before, a_after, hit, want_blocked, par, work, co
 
 @numba.njit(cache=True, nogil=True)
 def _window(offs, st, max_angle, fan_step, cap):  # pragma: no cover - compiled
-    """Next window of ``Probe._offsets(max_angle)`` into ``offs``; its size, 0
+    """Next window of ``PythonEngine._offsets(max_angle)`` into ``offs``; its size, 0
     at the end. ``st`` = [phase, pos, step, window index] carries the state:
     fine windows of 8 (step x4 each) up to the fan spacing, windows of
     8 ... 8192 rays at the fan spacing, then windows of ``cap``; every
@@ -210,13 +214,13 @@ def _window(offs, st, max_angle, fan_step, cap):  # pragma: no cover - compiled
 @numba.njit(cache=True, nogil=True)
 def search(fn, ctx, jx, jy, theta0, rot_dir, max_angle, want_blocked, first, par, work,
            count):  # pragma: no cover - compiled
-    """``Probe._search``: first angle from ``theta0`` towards ``rot_dir``
+    """``PythonEngine.search``: first angle from ``theta0`` towards ``rot_dir``
     (+-1.0) where the probe becomes blocked (or free).
 
     first : (3, m) ``d, x, y`` of the first window when the caller cast it
         already (m = 0 otherwise).
-    par : ``(L, ang_tol, fan_step, tip_zone, window cap)``.
-    work : (5, cap) scratch. count : (2,) int, casts and rays, incremented.
+    par, work : see the module doc. count : (4,) int -- casts and rays
+        (``count[:2]``) incremented.
 
     Returns ``(found, angle, d, x, y)``.
     """
@@ -262,8 +266,7 @@ def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
     plan : ``(offsets, n_along, max_along, max_back)``: the settle's first
     batch (``[0, along window, -back window]``) and both searches' reach.
 
-    Returns ``(status, theta, d, x, y)``, status :data:`OK`, :data:`LOST` or
-    :data:`JAMMED`.
+    Returns ``(status, theta, d, x, y)``, status a :class:`~core2d.sim.codes.Settle`.
     """
     soffs, n_along, max_a, max_b = plan
     n = len(soffs)
@@ -278,13 +281,13 @@ def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
         found, a, d, x, y = search(fn, ctx, jx, jy, theta, rot_dir, max_a, True,
                                    batch[:, 1:1 + n_along].copy(), par, work, count)
         if not found:
-            return LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
+            return Settle.LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
     else:
         found, a, d, x, y = search(fn, ctx, jx, jy, theta, -rot_dir, max_b, False,
                                    batch[:, 1 + n_along:].copy(), par, work, count)
         if not found:
-            return JAMMED, theta, np.inf, np.nan, np.nan
-    return OK, a, d, x, y
+            return Settle.JAMMED, theta, np.inf, np.nan, np.nan
+    return Settle.OK, a, d, x, y
 
 
 @numba.njit(cache=True, nogil=True)
@@ -298,17 +301,19 @@ def _distance_xy(px, py, ax, ay, abx, aby):  # pragma: no cover - compiled
 @numba.njit(cache=True, nogil=True)
 def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
     # pragma: no cover - compiled
-    """The micro-step loop of ``compliance.compliant_trace``, compiled.
+    """The micro-step loop of ``compliance.compliant_trace``
+    (:func:`core2d.sim.compliance.python_steps`), compiled.
 
     pose : ``[jx, jy, theta, joint_path]``, updated in place.
     motion : ``(vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps,
         guard_push)``.
     marks : ``[has_last, last x, last y, has_stop, stop x, stop y, leave_far,
         leave x, leave y]``.
-    count : (4,) int -- casts, rays, pushes, push attempts, incremented.
+    plan : the settle plan of :func:`settle`. par, work, count : see the
+    module doc (all four counters incremented).
 
-    Returns ``(event code, trace (k, 2), before (4,) joint and direction,
-    primary (d, x, y) or d = nan)``: see :data:`EVENTS`.
+    Returns ``(event, trace (k, 2), before (4,) joint and direction,
+    primary (d, x, y) or d = nan)``, event a :class:`~core2d.sim.codes.TraceEvent`.
     """
     vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps, guard = motion
     L, tip_zone = par[0], par[3]
@@ -323,29 +328,29 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
     jx, jy, theta = pose[0], pose[1], pose[2]
     before = np.array((jx, jy, math.cos(theta), math.sin(theta)))
     primary = np.array((np.nan, np.nan, np.nan))
-    event = 0
+    event = TraceEvent.LIMIT
     step, travelled = delta0, 0.0
     prev_disp, has_prev = 0.0, False
     for _ in range(int(max_steps)):
         c, s = math.cos(theta), math.sin(theta)
         if has_stop and _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx,
                                      (jy + L * s) - jy) <= near:
-            event = 1  # reached-body
+            event = TraceEvent.REACHED_BODY
             break
         if vx * c + vy * s > 0:
             if guard > 0:  # Case 3: the guard intercepts a pushing step
                 count[3] += 1
-                event = 2
+                event = TraceEvent.PUSHING
                 break
             count[2] += 1
         if travelled >= max_dist:
-            event = 3
+            event = TraceEvent.DONE
             break
         h = min(step, max_dist - travelled)
         njx, njy = jx + h * vx, jy + h * vy
         status, nth, d, qx, qy = settle(fn, ctx, njx, njy, theta, rot_dir, plan, par, work,
                                         count)
-        sliding = status == OK and L - d <= tip_zone and has_last
+        sliding = status == Settle.OK and L - d <= tip_zone and has_last
         disp = math.hypot(qx - lx, qy - ly) if sliding else np.inf
         continuous = disp <= jump
         if not continuous:
@@ -355,18 +360,18 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
                 step = h / 2
                 continue
         has_prev = False
-        if status == JAMMED:
-            event = 4
+        if status == Settle.JAMMED:
+            event = TraceEvent.BLOCKED
             break
         before[0], before[1], before[2], before[3] = jx, jy, c, s
         pose[3] += h
         travelled += h
         jx, jy, theta = njx, njy, nth
-        if status == LOST:
-            event = 5
+        if status == Settle.LOST:
+            event = TraceEvent.LOST
             break
         if not continuous:
-            event = 6
+            event = TraceEvent.JUMP
             primary[0], primary[1], primary[2] = d, qx, qy
             break
         if nt + 1 >= len(trace):
@@ -377,12 +382,12 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
         if has_stop and has_last and _distance_xy(sx, sy, lx, ly, qx - lx, qy - ly) <= tip_zone:
             trace[nt, 0], trace[nt, 1] = sx, sy
             nt += 1
-            event = 7  # the tip passed P_fin during this step
+            event = TraceEvent.REACHED  # the tip passed P_fin during this step
             break
         if leave_far and _distance_xy(ex, ey, lx, ly, qx - lx, qy - ly) <= tip_zone:
             trace[nt, 0], trace[nt, 1] = ex, ey
             nt += 1
-            event = 8  # the tip passed the other end of the area
+            event = TraceEvent.LEFT  # the tip passed the other end of the area
             break
         has_last, lx, ly = True, qx, qy
         trace[nt, 0], trace[nt, 1] = qx, qy

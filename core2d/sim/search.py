@@ -1,37 +1,102 @@
-"""The probe simulator's angular search, in Python (§3.2).
+"""Internal: the Python ray engine of the probe simulator (§3.2): any contact model.
 
 A swing, a settle or a compliant step ends where the probe on its joint
-turns from free to blocked (or back). :class:`AngularSearch` finds that
+turns from free to blocked (or back). :class:`PythonEngine` finds that
 angle with fans of rays from the joint: windows of growing size
-(:meth:`~AngularSearch._offsets`), then bisection by fans of 16 rays inside
-the bracket (:meth:`~AngularSearch._refine`) down to the angular resolution
-``ang_tol``. It is the path of every contact model; for one with a ray
-function :mod:`core2d.sim.kernels` runs the same searches compiled (the same
-rays, tested to give the same answers).
+(:meth:`~PythonEngine._offsets`), then bisection by fans of 16 rays inside
+the bracket (:meth:`~PythonEngine._refine`) down to the angular resolution
+``ang_tol``. It casts through the contact model's ``cast`` (and its fused
+``fan`` when it has one) and counts casts, rays and their time. For a
+contact model with a ray function :class:`core2d.sim.compiled.CompiledEngine`
+runs the same searches compiled (the same rays, tested to give the same
+answers); :func:`core2d.sim.engine.make_engine` chooses one of the two.
 """
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 
-from core2d.sim import kernels
+from core2d.planar import unit
+from core2d.readings import LEFT, RIGHT, TIP, Contact
+from core2d.resolution import Resolution
+from core2d.result import SenseStats
+from core2d.sim.codes import REFINE as _REFINE
+from core2d.sim.codes import WINDOWS as _WINDOWS
+from core2d.sim.compliance import python_steps
 
-__all__ = ["AngularSearch"]
+__all__ = ["PythonEngine"]
 
-_WINDOWS = kernels._WINDOWS  # fan windows at the fan spacing
-_REFINE = 16
-_NO_FIRST = np.zeros((3, 0))
 _STEPS = np.arange(_REFINE + 2, dtype=np.float64)[1:-1]  # np.linspace's steps 1 .. _REFINE
 
 
-class AngularSearch:
-    """Mixin of :class:`core2d.sim.probe.Probe`: its searches about a joint.
+class PythonEngine:
+    """The simulator's ray engine in Python (see :class:`core2d.sim.engine.Engine`).
 
-    Uses the probe's ``fan_step``, ``ang_tol``, ``_offset_cache``, ``_fan``
-    and, when set, ``_compiled`` / ``_run_kernel``.
+    contact : ContactModel -- the geometry.
+    stats : SenseStats -- the probe's counters: casts, rays and cast time
+        are booked here (and pushes by the trace steps).
+    length : float -- probe length L.
+    resolution : Resolution -- eps and tol; the angular fan spacing and
+        resolution follow at ``length``.
     """
 
+    def __init__(self, contact, stats: SenseStats, length: float, resolution: Resolution):
+        self.contact, self.stats, self.length = contact, stats, float(length)
+        self.tol = resolution.tol
+        self.fan_step = resolution.fan_angle(self.length)  # angular fan spacing
+        self.ang_tol = resolution.angle_tol(self.length)  # angular resolution
+        self.tip_zone = resolution.tip_zone
+        self._offset_cache = {}
+        self._fused_fan = getattr(contact, "fan", None)  # optional (Embree backend)
+
+    # ------------------------------------------------------------------ rays
+    def cast(self, origins, dirs, max_dist):
+        """``(distances, points)`` of the contact model's ``cast``, booked."""
+        t0 = time.perf_counter()
+        d, p, _ = self.contact.cast(origins, dirs, max_dist)
+        self._book(t0, len(origins))
+        return d, p
+
+    def _book(self, t0, rays):
+        """Count one cast of ``rays`` rays that started at ``t0``."""
+        stats = self.stats
+        stats.cast_seconds += time.perf_counter() - t0
+        stats.casts += 1
+        stats.rays += rays
+
+    def fan(self, joint, angles):
+        """Rays from ``joint`` at ``angles`` over the probe length (through the
+        contact model's fused ``fan`` when it has one: the same rays)."""
+        fan = self._fused_fan
+        if fan is not None:
+            angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+            t0 = time.perf_counter()
+            d, p = fan(joint, angles, self.length)
+            self._book(t0, len(angles))
+            return d, p
+        dirs = unit(angles).reshape(-1, 2)
+        origins = np.empty_like(dirs)
+        origins[:] = joint
+        return self.cast(origins, dirs, self.length)
+
+    def sense_rays(self, jx, jy, th, alpha, L, tol):
+        """The three rays of a reading (one cast): from the joint at
+        ``th +- alpha`` up to L + tol, and from the tip along t up to tol."""
+        c, sn = math.cos(th), math.sin(th)
+        origins = np.array(((jx, jy), (jx, jy), (jx + L * c, jy + L * sn)))
+        dirs = np.array(((math.cos(th + alpha), math.sin(th + alpha)),
+                         (math.cos(th - alpha), math.sin(th - alpha)), (c, sn)))
+        return self.cast(origins, dirs, np.array((L + tol, L + tol, tol)))
+
+    def contact_at(self, dist, point, rot_dir) -> Contact:
+        """Contact found by a ray from the joint blocking rotation ``rot_dir``."""
+        if self.length - dist <= self.tip_zone:
+            return Contact(point, TIP, float(dist))
+        return Contact(point, RIGHT if rot_dir > 0 else LEFT, float(dist))
+
+    # -------------------------------------------------------------- searches
     def _offsets(self, max_angle):
         """Angular offsets of a search, window by window: fine first
         (2 ang_tol), growing 4x per window of 8 rays up to the eps/4 fan
@@ -50,7 +115,7 @@ class AngularSearch:
             yield ks
             pos = float(ks[-1])
 
-    def _settle_offsets(self, along_angle, back_angle):
+    def settle_offsets(self, along_angle, back_angle):
         """``[0, head(along_angle), -head(back_angle)]`` (cached) and the two
         head lengths: the offsets of a settle's first batch."""
         key = (float(along_angle), float(back_angle))
@@ -83,7 +148,7 @@ class AngularSearch:
             pos = ks[-1]
         return [np.minimum(w, max_angle) for w in out]
 
-    def _search(self, joint, theta0, rot_dir, max_angle, want_blocked=True, first=None):
+    def search(self, joint, theta0, rot_dir, max_angle, want_blocked=True, first=None):
         """First angle from ``theta0`` (excluded) towards ``rot_dir`` where the
         probe on ``joint`` becomes blocked (or free), resolved to ang_tol.
         ``first`` is the ``(dist, point)`` answer for the rays of the first
@@ -93,11 +158,6 @@ class AngularSearch:
         bracket and the hit of its blocked side -- or None when nothing
         changes within ``max_angle``.
         """
-        if self._compiled is not None and first is None:
-            found, angle, d, x, y = self._run_kernel(
-                kernels.search, float(joint[0]), float(joint[1]), float(theta0),
-                float(rot_dir), float(max_angle), want_blocked, _NO_FIRST)
-            return (angle, (d, np.array((x, y)))) if found else None
         prev = 0.0
         if first is not None:  # the first window, cast already: no array of angles
             offs = self._offsets_head(max_angle)
@@ -113,7 +173,7 @@ class AngularSearch:
             if k == 0 and first is not None:
                 continue
             ang = theta0 + rot_dir * offs
-            d, p = self._fan(joint, ang)
+            d, p = self.fan(joint, ang)
             hit = d < math.inf if want_blocked else d == math.inf
             i = int(hit.argmax())
             if hit[i]:
@@ -129,7 +189,7 @@ class AngularSearch:
         while abs(a_after - a_before) > self.ang_tol:
             # np.linspace(a_before, a_after, _REFINE + 2)[1:-1], without its overhead
             ang = _STEPS * ((a_after - a_before) / (_REFINE + 1)) + a_before
-            d, p = self._fan(joint, ang)
+            d, p = self.fan(joint, ang)
             hit = d < math.inf if want_blocked else d == math.inf
             i = int(hit.argmax())
             if hit[i]:
@@ -146,6 +206,27 @@ class AngularSearch:
         if want_blocked:
             return a_before, last_blocked or blocked_hit
         if last_blocked is None:  # blocked side is the start angle itself
-            d, p = self._fan(joint, [a_before])
+            d, p = self.fan(joint, [a_before])
             last_blocked = (d[0], p[0])
         return a_after, last_blocked
+
+    def search_from(self, origin, theta0, rot_dir, max_angle):
+        """Like :meth:`search` for rays from ``origin`` (offset by tol), at
+        the fan spacing, in windows of at most 8192 rays: the offset of the
+        first ray that hits, or None."""
+        step = self.fan_step
+        n = max(1, int(np.ceil(max_angle / step)))
+        for lo in range(0, n, _WINDOWS[-1]):
+            k = np.arange(lo + 1, min(n, lo + _WINDOWS[-1]) + 1)
+            dirs = unit(theta0 + rot_dir * np.minimum(k * step, max_angle))
+            d, _ = self.cast(origin + self.tol * dirs, dirs, self.length)
+            hit = np.isfinite(d)
+            if hit.any():
+                return (lo + int(np.argmax(hit))) * step
+        return None
+
+    def trace_steps(self, probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last,
+                    stop, leave):
+        """The micro-steps of a compliant trace: :func:`core2d.sim.compliance.python_steps`."""
+        return python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, last,
+                            stop, leave)

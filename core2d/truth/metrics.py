@@ -39,6 +39,9 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from core2d.resolution import Resolution
+from core2d.result import SliceResult
+
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
 
 __all__ = ["slice_metrics", "total_metrics", "lid_arcs"]
@@ -134,7 +137,7 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
     return out
 
 
-def slice_metrics(loops, result, eps: float, tol: float | None = None,
+def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = None,
                   spacing: float | None = None, samples=None) -> dict:
     """Metrics of one :class:`core2d.result.SliceResult` against the true contour.
 
@@ -143,7 +146,8 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
     loops : list of (k, 2) float -- true contour of the slice (outer CCW, holes CW).
     result : SliceResult
     eps : float -- the planner's eps.
-    tol : float, optional -- distance tolerance, default ``eps / 2``.
+    tol : float, optional -- distance tolerance, default ``eps / 2``
+        (:attr:`Resolution.metric_tol <core2d.resolution.Resolution.metric_tol>`).
     spacing : float, optional -- sampling step, default ``tol / 2``.
     samples : (ContourSamples, (m,) bool), optional -- a cached
         :func:`core2d.truth.reachability.reachable_samples` of ``loops`` at ``spacing``.
@@ -153,7 +157,7 @@ def slice_metrics(loops, result, eps: float, tol: float | None = None,
     dict of JSON-serialisable numbers (see module doc), plus the counters of
     ``result.stats.as_dict()`` under their own names.
     """
-    tol = 0.5 * eps if tol is None else float(tol)
+    tol = Resolution.of(eps).metric_tol if tol is None else float(tol)
     spacing = 0.5 * tol if spacing is None else float(spacing)
     samp, reach = reachable_samples(loops, spacing) if samples is None else samples
     w = samp.lengths

@@ -1,6 +1,6 @@
 """One in-plane ray at a time on Embree's C API, callable from compiled code.
 
-:class:`slicer.embree_contact.EmbreeContact` answers batches through
+:class:`slicer.contact.embree.EmbreeContact` answers batches through
 ``embreex``: about 1 us of Python and numpy per call however few its rays.
 A probe motion resolves a contact by bisection, fan after fan of ~16 rays,
 so that per-call cost, not Embree, was most of the sensing time. This module
@@ -12,7 +12,7 @@ gives the probe simulator's compiled kernels (:mod:`core2d.sim.kernels`) a
 that casts the 2D ray with ``rtcIntersect1`` on a scene of its own and
 writes ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), with the
 same float64 refinement against the hit triangle's section segment as the
-batched path (:func:`slicer.refine.segment_hit`).
+batched path (:func:`slicer.contact.refine.segment_hit`).
 
 The scene is built as ``embreex`` builds its own (robust traversal, high
 build quality, un-indexed float32 triangles, the same float32 rays with
@@ -27,7 +27,7 @@ keep to ``EmbreeContact.cast``.
 Examples
 --------
 >>> import ctypes, trimesh
->>> from slicer.embree_contact import EmbreeContact
+>>> from slicer.contact.embree import EmbreeContact
 >>> from slicer.planes import make_planes
 >>> box = trimesh.creation.box(extents=[2.0, 2.0, 2.0])
 >>> contact = EmbreeContact(box, make_planes(box, "z", offsets=[0.3])[0])
@@ -52,7 +52,7 @@ import numba
 import numpy as np
 from numba import types
 
-from slicer.refine import segment_hit
+from slicer.contact.refine import segment_hit
 
 __all__ = ["available", "DirectScene", "ray_function"]
 

@@ -16,6 +16,7 @@ MODULES = [
     "slicer.contact.embree",
     "slicer.contact.refine",
     "slicer.contact.embree_direct",
+    "slicer.contact.embree_device",
     "slicer.contact.exact",
     "slicer.contact.trimesh_ray",
     "slicer.slices",

@@ -2,8 +2,8 @@
 
 * Data flows one way (``meshes -> slicer -> core2d -> recon3d``): slicer
   imports neither core2d nor recon3d.
-* Only the two Embree modules (``slicer/contact/embree.py``,
-  ``slicer/contact/embree_direct.py``) import ``embreex``; the shared
+* Only the Embree modules (``slicer/contact/embree.py``, ``embree_direct.py``
+  and ``embree_device.py``) import ``embreex``; the shared
   plane-crossing helper and the exact and trimesh backends import no ray
   engine, and nothing imports the Embree modules at import time.
 * So a process without ``embreex`` slices, builds the trimesh backend and
@@ -18,7 +18,7 @@ import textwrap
 from test_core2d_walls import _imports  # module names a file imports (resolved)
 
 SLICER = pathlib.Path(__file__).resolve().parents[1] / "slicer"
-EMBREE_MODULES = {"contact/embree.py", "contact/embree_direct.py"}
+EMBREE_MODULES = {"contact/embree.py", "contact/embree_direct.py", "contact/embree_device.py"}
 ENGINE_FREE = {"contact/crossing.py", "contact/exact.py", "contact/refine.py"}
 
 
@@ -38,7 +38,7 @@ def test_only_the_embree_modules_import_embreex():
     files = _files()
     assert {"contact/trimesh_ray.py"} | ENGINE_FREE | EMBREE_MODULES <= set(files)
     users = {name for name, mods in files.items() if any(m.split(".")[0] == "embreex" for m in mods)}
-    assert users == EMBREE_MODULES
+    assert "contact/embree.py" in users and users <= EMBREE_MODULES, users
 
 
 def test_the_crossing_helper_and_the_exact_backend_import_no_ray_engine():
@@ -49,7 +49,8 @@ def test_the_crossing_helper_and_the_exact_backend_import_no_ray_engine():
 
 
 def test_no_module_imports_the_embree_modules_but_each_other():
-    embree = {"slicer.contact.embree", "slicer.contact.embree_direct"}
+    embree = {"slicer.contact.embree", "slicer.contact.embree_direct",
+              "slicer.contact.embree_device"}
     for name, mods in _files().items():
         if name not in EMBREE_MODULES:
             assert not mods & embree, f"slicer/{name} imports {mods & embree}"
@@ -88,4 +89,4 @@ def test_trimesh_backend_senses_without_embreex():
                      "not installed; use 'trimesh' or 'exact'"]
     (loaded,) = [ast.literal_eval(line[7:]) for line in lines if line.startswith("LOADED")]
     assert "slicer.contact.trimesh_ray" in loaded
-    assert not {"slicer.contact.embree", "slicer.contact.embree_direct"} & set(loaded)
+    assert not {m for m in loaded if m.startswith("slicer.contact.embree")}

@@ -5,7 +5,8 @@ Each model answers ``cast(origins, dirs, max_dist)`` (the contract of
 
 * ``embree`` -- :mod:`slicer.contact.embree` (``embreex`` batches) and
   :mod:`slicer.contact.embree_direct` (one ray from compiled code on
-  Embree's C API), refined in float64 by :mod:`slicer.contact.refine`;
+  Embree's C API), refined in float64 by :mod:`slicer.contact.refine`, on
+  one Embree device per process (:mod:`slicer.contact.embree_device`);
 * ``trimesh`` -- :mod:`slicer.contact.trimesh_ray`, trimesh's generic ray
   engine, for users without Embree;
 * ``exact`` -- :mod:`slicer.contact.exact`, rays against the reference

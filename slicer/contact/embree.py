@@ -7,7 +7,9 @@ small (the origin is near the section centre) and a 2D ray ``(x, y), (dx,
 dy)`` is the 3D ray ``(x, y, 0), (dx, dy, 0)`` with no per-call transform
 (this is ``to_3d`` up to the rigid change of frame).
 
-One ``EmbreeScene.run(..., query='INTERSECT')`` per batch gives the first
+All scenes of a process share one ``embreex`` device
+(:mod:`slicer.contact.embree_device`). One
+``EmbreeScene.run(..., query='INTERSECT')`` per batch gives the first
 triangle hit by each ray. The distance is then refined in float64 against
 that triangle's section segment (precomputed per slice, ``segments``): the
 ray is intersected with the segment's line, the segment parameter is clamped
@@ -29,9 +31,10 @@ from __future__ import annotations
 import logging
 
 import numpy as np
-from embreex import mesh_construction, rtcore_scene
+from embreex import mesh_construction, rtcore, rtcore_scene
 
 from slicer.contact.crossing import plane_crossing
+from slicer.contact.embree_device import PerProcess
 from slicer.contact.embree_direct import DirectScene, ray_function
 from slicer.contact.refine import NO_LIMITS, fill_fan, fill_rays, refine_hits
 from slicer.degenerate import DEGENERATE_TOL, mesh_scale
@@ -42,6 +45,10 @@ logger = logging.getLogger(__name__)
 
 SMALL_BATCH = 24
 """Batches up to this size keep their buffer views cached (a probe's fans)."""
+
+_DEVICE = PerProcess(rtcore.EmbreeDevice)
+"""The embreex device of every scene of this process (embreex would open one
+per scene; see :mod:`slicer.contact.embree_device`)."""
 
 
 class EmbreeContact:
@@ -106,7 +113,7 @@ class EmbreeContact:
         self._scene = None
         self._kernel = None
         if len(self._triangles):
-            self._scene = rtcore_scene.EmbreeScene(robust=True)
+            self._scene = rtcore_scene.EmbreeScene(_DEVICE.get(), robust=True)
             mesh_construction.TriangleMesh(self._scene, self._triangles)
         self._cap = 0
         self._grow(64)

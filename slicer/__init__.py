@@ -2,10 +2,11 @@
 
 Cut a triangle mesh with parallel planes; on each plane, get the reference
 cross-section (closed loops in the plane's 2D frame) and a contact model
-whose ``cast(origins, dirs, max_dist)`` answers in-plane ray queries with
-Embree (``EmbreeContact``), exactly against the contour (``ExactContact``)
-or with trimesh's generic ray engine (``TrimeshContact``);
-see :mod:`core2d.sim.contact` for the contract.
+(:mod:`slicer.contact`) whose ``cast(origins, dirs, max_dist)`` answers
+in-plane ray queries with Embree (``'embree'``, needs ``embreex``), with
+trimesh's generic ray engine (``'trimesh'``) or exactly against the contour
+(``'exact'``); see :mod:`core2d.sim.contact` for the contract. Importing
+slicer does not import ``embreex``.
 
 Examples
 --------
@@ -21,14 +22,13 @@ Examples
 >>> round(float(d[0]), 9), np.round(n[0], 3).tolist()
 (1.0, [0.098, -0.995])
 """
-from slicer.agreement import AgreementReport, agreement_report, random_rays
+from slicer.contact import BACKENDS
+from slicer.contact.exact import ExactContact
+from slicer.contact.trimesh_ray import TrimeshContact
 from slicer.degenerate import mesh_scale, nudge_planes, nudge_report
-from slicer.embree_contact import EmbreeContact
-from slicer.exact import ExactContact
 from slicer.planes import SlicePlane, frame_for_normal, make_planes, parse_axis
 from slicer.section import Section, sections
-from slicer.slices import BACKENDS, Slice, slice_mesh
-from slicer.trimesh_contact import TrimeshContact
+from slicer.slices import Slice, slice_mesh
 
 __all__ = [
     "SlicePlane",
@@ -40,13 +40,9 @@ __all__ = [
     "mesh_scale",
     "Section",
     "sections",
-    "EmbreeContact",
-    "ExactContact",
-    "TrimeshContact",
     "BACKENDS",
     "Slice",
     "slice_mesh",
-    "AgreementReport",
-    "agreement_report",
-    "random_rays",
+    "ExactContact",
+    "TrimeshContact",
 ]

@@ -1,4 +1,4 @@
-"""Slices of a mesh: plane + reference contour + contact backends.
+"""Slices of a mesh: plane + reference contour + contact models.
 
 Examples
 --------
@@ -20,16 +20,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from slicer.contact import contact_class
 from slicer.degenerate import mesh_scale, nudge_planes
-from slicer.embree_contact import EmbreeContact
-from slicer.exact import ExactContact
 from slicer.planes import SlicePlane, make_planes
 from slicer.section import sections
-from slicer.trimesh_contact import TrimeshContact
 
-__all__ = ["Slice", "slice_mesh", "BACKENDS"]
-
-BACKENDS = ("embree", "exact", "trimesh")
+__all__ = ["Slice", "slice_mesh"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,7 +47,7 @@ class Slice:
     method : str
         How the reference contour was computed (``manifold`` / ``trimesh``).
     mesh : trimesh.Trimesh
-        The source mesh (for the Embree backend).
+        The source mesh (for the mesh backends, ``embree`` and ``trimesh``).
     """
 
     plane: SlicePlane
@@ -77,26 +73,30 @@ class Slice:
         Parameters
         ----------
         backend : {'embree', 'exact', 'trimesh'}
-            ``embree``: :class:`~slicer.embree_contact.EmbreeContact` on the
-            triangles crossing the plane; ``exact``:
-            :class:`~slicer.exact.ExactContact` on the reference contour;
-            ``trimesh``: :class:`~slicer.trimesh_contact.TrimeshContact`
-            (trimesh's generic ray engine on the crossing triangles).
+            ``embree``: :class:`~slicer.contact.embree.EmbreeContact` on the
+            triangles crossing the plane (needs ``embreex``); ``exact``:
+            :class:`~slicer.contact.exact.ExactContact` on the reference
+            contour; ``trimesh``:
+            :class:`~slicer.contact.trimesh_ray.TrimeshContact` (trimesh's
+            generic ray engine on the crossing triangles).
 
         Returns
         -------
         object with ``cast(origins, dirs, max_dist)``
+
+        Raises
+        ------
+        ValueError
+            For an unknown backend; ImportError for ``'embree'`` without
+            ``embreex`` (see :func:`slicer.contact.contact_class`).
         """
         model = self._backends.get(backend)
         if model is None:
-            if backend == "embree":
-                model = EmbreeContact(self.mesh, self.plane)
-            elif backend == "exact":
-                model = ExactContact(self.loops, chains=self.open_chains)
-            elif backend == "trimesh":
-                model = TrimeshContact(self.mesh, self.plane)
+            cls = contact_class(backend)
+            if backend == "exact":
+                model = cls(self.loops, chains=self.open_chains)
             else:
-                raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
+                model = cls(self.mesh, self.plane)
             self._backends[backend] = model
         return model
 

@@ -19,7 +19,7 @@ from core2d.planner.areas import Area
 from core2d.planner.run import Budget, Exploration
 from core2d.sim.probe import Probe
 from core2d.planner.regions import Posture
-from slicer.exact import ExactContact
+from slicer.contact.exact import ExactContact
 
 EPS = 1.0
 WORKSPACE = ((50.0, 40.0), 80.0)

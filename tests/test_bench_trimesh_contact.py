@@ -10,13 +10,14 @@ import meshes
 import slicer
 from core2d import sense_slice
 from slicer import TrimeshContact
+from slicer.agreement import random_rays
 
 
 @pytest.mark.parametrize("scene", ["fig18_overhangs", "bored_block"])
 def test_trimesh_backend_agrees_with_exact_on_random_rays(scene):
     mesh = meshes.load(scene)
     for s in slicer.slice_mesh(mesh, "z", count=3):
-        o, d, m = slicer.random_rays(s, 400, np.random.default_rng(s.index))
+        o, d, m = random_rays(s, 400, np.random.default_rng(s.index))
         dt, pt, nt = s.contact("trimesh").cast(o, d, m)
         dx, px, nx = s.contact("exact").cast(o, d, m)
         assert isinstance(s.contact("trimesh"), TrimeshContact)

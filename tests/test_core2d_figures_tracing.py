@@ -25,7 +25,7 @@ from figure_scenes import (DOWN, EPS, HILL, HILL_MIRROR, HILL_TOP, LIP_LEFT, LIP
                            OVERHANG_LEFT, OVERHANG_RIGHT, SLOPE_LEFT, SLOPE_RIGHT, V_BOTTOM,
                            V_POCKET, WORKSPACE, block, chain, dist_to_contour, make_probe, new_run,
                            on_int, place, run_one, vertical_area)
-from slicer.exact import ExactContact
+from slicer.contact.exact import ExactContact
 
 TOL = EPS / 20  # the probe's default contact resolution
 

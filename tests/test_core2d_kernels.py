@@ -20,7 +20,7 @@ from core2d.sim.compiled import CompiledEngine
 from core2d.sim.search import PythonEngine
 from core2d.sim.probe import Probe
 from slicer import slice_mesh
-from slicer.embree_direct import available
+from slicer.contact.embree_direct import available
 
 pytestmark = pytest.mark.skipif(not available(), reason="no Embree 4 library to call directly")
 
@@ -123,7 +123,7 @@ def _extruded_contact(loops):
     import trimesh
     from shapely.geometry import Polygon as ShapelyPolygon
 
-    from slicer.embree_contact import EmbreeContact
+    from slicer.contact.embree import EmbreeContact
     from slicer.planes import SlicePlane
 
     mesh = trimesh.creation.extrude_polygon(ShapelyPolygon(loops[0]), height=2.0)

@@ -17,7 +17,7 @@ from core2d import sense_slice
 from core2d.truth.metrics import slice_metrics
 from outlines import outline
 from polygen import polygons_with_holes
-from slicer.exact import ExactContact
+from slicer.contact.exact import ExactContact
 
 EPS = 1.0
 SETTINGS = settings(max_examples=3, deadline=None, derandomize=True,

@@ -20,7 +20,7 @@ import sys
 import numpy as np
 import pytest
 
-from slicer.exact import ExactContact
+from slicer.contact.exact import ExactContact
 from core2d import sense_slice
 
 CORE2D = pathlib.Path(__file__).resolve().parents[1] / "core2d"

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import shapely
 
-from slicer.exact import ExactContact
+from slicer.contact.exact import ExactContact
 from core2d.planar import unit
 from core2d.sim.probe import Probe
 from core2d.readings import LEFT, RIGHT, TIP

@@ -14,9 +14,10 @@ import trimesh
 
 import meshes
 from conftest import REAL_MESHES
-import slicer.embree_contact as ec_mod
-from slicer import EmbreeContact, ExactContact, agreement_report, make_planes, slice_mesh
-from slicer.agreement import _material, degenerate_offsets, vertex_rays
+import slicer.contact.embree as ec_mod
+from slicer import ExactContact, make_planes, slice_mesh
+from slicer.agreement import _material, agreement_report, degenerate_offsets, vertex_rays
+from slicer.contact.embree import EmbreeContact
 
 SCENES = meshes.names()
 REAL = REAL_MESHES
@@ -212,6 +213,6 @@ def test_exact_doctest_interface_kept():
 def test_embree_contact_warns_on_degenerate_plane(caplog):
     box = trimesh.creation.box(bounds=[[0, 0, 0], [1, 1, 2]]).subdivide()
     plane = make_planes(box, "z", offsets=[1.0])[0]  # through the midpoint ring
-    with caplog.at_level(logging.WARNING, logger="slicer.embree_contact"):
+    with caplog.at_level(logging.WARNING, logger="slicer.contact.embree"):
         EmbreeContact(box, plane)
     assert "nudge the plane first" in caplog.text

@@ -6,7 +6,7 @@ import pytest
 
 import meshes
 from slicer import slice_mesh
-from slicer.embree_direct import DirectScene, available
+from slicer.contact.embree_direct import DirectScene, available
 
 pytestmark = pytest.mark.skipif(not available(), reason="no Embree 4 library to call directly")
 
@@ -39,7 +39,7 @@ def test_ray_function_answers_as_cast(name):
 
 
 def test_direct_scene_of_nothing_misses():
-    from slicer.embree_direct import ray_function
+    from slicer.contact.embree_direct import ray_function
 
     scene = DirectScene(np.zeros((0, 3, 3), np.float32), np.zeros((0, 6)))
     out = np.zeros(3)
@@ -50,7 +50,7 @@ def test_direct_scene_of_nothing_misses():
 def test_without_a_direct_library_the_contact_has_no_ray_function(monkeypatch):
     """No Embree 4 library to call: ``ray_kernel`` is None and the probe keeps
     to ``cast`` (the same answers, the Python search)."""
-    import slicer.embree_contact as ec
+    import slicer.contact.embree as ec
     from core2d import sense_slice
 
     monkeypatch.setattr(ec, "ray_function", lambda: 0)

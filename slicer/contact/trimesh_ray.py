@@ -1,9 +1,10 @@
 """Per-slice contact through trimesh's generic ray engine (no Embree).
 
-The backend a user without Embree would reach for: the triangles that cross
-the plane, in the plane's own frame (float64, as :mod:`slicer.embree_contact`
-builds them), queried with ``trimesh.ray.ray_triangle.RayMeshIntersector``
-(pure numpy, an R-tree of triangle bounds for candidates). One
+The backend a user without Embree would reach for (it loads without
+``embreex``): the triangles that cross the plane, in the plane's own frame
+(float64, :func:`slicer.contact.crossing.plane_crossing`), queried with
+``trimesh.ray.ray_triangle.RayMeshIntersector`` (pure numpy, an R-tree of
+triangle bounds for candidates). One
 ``intersects_id(..., multiple_hits=False)`` call per batch gives the first
 triangle each ray hits; the contact distance is the hit's projection on the
 ray, the normal the unit perpendicular of that triangle's section segment
@@ -14,19 +15,18 @@ backend benchmark and the stability study; it answers the contract of
 Examples
 --------
 >>> import trimesh
->>> from slicer.planes import make_planes
->>> box = trimesh.creation.box(extents=[2.0, 2.0, 2.0])
->>> plane = make_planes(box, "z", offsets=[0.3])[0]
->>> tc = TrimeshContact(box, plane)
->>> d, p, n = tc.cast(np.array([[-3.0, 0.5]]), np.array([[1.0, 0.0]]), 10.0)
->>> float(d[0]), p[0].tolist(), n[0].tolist()
-(2.0, [-1.0, 0.5], [-1.0, 0.0])
+>>> from slicer import slice_mesh
+>>> (cut,) = slice_mesh(trimesh.creation.box(extents=[2.0, 2.0, 2.0]), "z", offsets=[0.3])
+>>> tc = TrimeshContact(cut.mesh, cut.plane)
+>>> d, p, n = tc.cast(np.array([[-3.0, 0.5], [0.0, 0.0]]), np.array([[1.0, 0.0], [0.0, 1.0]]), 10.0)
+>>> d.tolist(), p.tolist(), n.tolist()
+([2.0, 1.0], [[-1.0, 0.5], [0.0, 1.0]], [[-1.0, 0.0], [0.0, -1.0]])
 """
 from __future__ import annotations
 
 import numpy as np
 
-from slicer.embree_contact import crossing_faces, section_segments
+from slicer.contact.crossing import plane_crossing
 
 __all__ = ["TrimeshContact"]
 
@@ -36,33 +36,29 @@ class TrimeshContact:
 
     Parameters
     ----------
-    mesh : trimesh.Trimesh
-        Anything with ``vertices`` (v, 3) and ``faces`` (f, 3).
-    plane : SlicePlane
+    mesh, plane : trimesh.Trimesh, SlicePlane
+        The mesh (``vertices`` (v, 3), ``faces`` (f, 3)) and the plane, as
+        :func:`slicer.contact.crossing.plane_crossing` takes them.
 
     Attributes
     ----------
-    face_index : (k,) int -- mesh faces crossing the plane (the scene).
-    segments : (k, 2, 2) float -- their section segments in the 2D frame.
+    face_index, segments, outward : (k,) int, (k, 2, 2) float, (k, 2) float
+        The crossing faces, their section segments and outward normals
+        (:class:`slicer.contact.crossing.PlaneCrossing`); the scene holds
+        the faces in this order.
     """
 
     def __init__(self, mesh, plane):
         import trimesh
         from trimesh.ray.ray_triangle import RayMeshIntersector
 
-        vertices = np.asarray(mesh.vertices, dtype=np.float64)
-        faces = np.asarray(mesh.faces)
-        local_v = (vertices - plane.origin) @ plane.basis.T
-        idx = crossing_faces(local_v[:, 2][faces])
-        local = local_v[faces[idx]]
-        seg, outward = section_segments(local)
-        keep = np.any(seg[:, 0] != seg[:, 1], axis=1)
-        self.face_index = idx[keep]
-        self.segments = seg[keep]
-        self.outward = outward[keep]
+        cut = plane_crossing(mesh, plane)
+        self.face_index = cut.face_index
+        self.segments = cut.segments
+        self.outward = cut.outward
         self._engine = None
-        if keep.any():
-            tris = local[keep]
+        if len(cut.triangles):
+            tris = cut.triangles
             scene = trimesh.Trimesh(tris.reshape(-1, 3), np.arange(3 * len(tris)).reshape(-1, 3),
                                     process=False)
             self._engine = RayMeshIntersector(scene)
@@ -72,12 +68,16 @@ class TrimeshContact:
 
         Parameters
         ----------
-        origins, dirs : (n, 2) float -- ray origins and unit directions.
+        origins, dirs : (n, 2) float
+            Ray origins and unit directions.
         max_dist : (n,) float or float
 
         Returns
         -------
-        distances (n,) float (``inf`` on a miss), points (n, 2), normals (n, 2)
+        distances : (n,) float
+            ``inf`` on a miss (the contract of :mod:`core2d.sim.contact`).
+        points, normals : (n, 2) float
+            ``nan`` on a miss; normals point against the rays.
         """
         o = np.atleast_2d(np.asarray(origins, dtype=np.float64))
         d = np.atleast_2d(np.asarray(dirs, dtype=np.float64))

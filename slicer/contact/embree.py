@@ -1,13 +1,15 @@
 """Per-slice Embree contact scene: in-plane rays against crossing triangles.
 
-An in-plane ray hits the triangles that cross the plane exactly where the
-cross-section contour is, so the scene holds only those triangles. They are
-stored in the plane's own frame, ``(p - origin) @ [u, v, normal].T``, cast to
-float32: coordinates stay small (the origin is near the section centre) and
-a 2D ray ``(x, y), (dx, dy)`` is the 3D ray ``(x, y, 0), (dx, dy, 0)`` with no
-per-call transform (this is ``to_3d`` up to the rigid change of frame).
+The scene holds the triangles that cross the plane
+(:func:`slicer.contact.crossing.plane_crossing`), in the plane's own frame
+``(p - origin) @ [u, v, normal].T``, cast to float32: coordinates stay
+small (the origin is near the section centre) and a 2D ray ``(x, y), (dx,
+dy)`` is the 3D ray ``(x, y, 0), (dx, dy, 0)`` with no per-call transform
+(this is ``to_3d`` up to the rigid change of frame).
 
-One ``EmbreeScene.run(..., query='INTERSECT')`` per batch gives the first
+All scenes of a process share one ``embreex`` device
+(:mod:`slicer.contact.embree_device`). One
+``EmbreeScene.run(..., query='INTERSECT')`` per batch gives the first
 triangle hit by each ray. The distance is then refined in float64 against
 that triangle's section segment (precomputed per slice, ``segments``): the
 ray is intersected with the segment's line, the segment parameter is clamped
@@ -18,84 +20,35 @@ the ray. Robust mode is kept: without it ~4% of rays through vertices miss.
 
 Embree is asked for the primitive only (``query='INTERSECT'``, whole ray);
 ``max_dist`` is applied to the refined float64 distance. Every batch is
-refined ray by ray in compiled code (:mod:`slicer.refine`: numpy's per-call
-overhead dominates the small batches of a probe motion, and the loop is ~6x
-faster than vectorised numpy on large ones). :attr:`EmbreeContact.ray_kernel`
-gives compiled callers the same answer one ray at a time
-(:mod:`slicer.embree_direct`).
+refined ray by ray in compiled code (:mod:`slicer.contact.refine`: numpy's
+per-call overhead dominates the small batches of a probe motion, and the
+loop is ~6x faster than vectorised numpy on large ones).
+:attr:`EmbreeContact.ray_kernel` gives compiled callers the same answer one
+ray at a time (:mod:`slicer.contact.embree_direct`).
 """
 from __future__ import annotations
 
 import logging
 
 import numpy as np
-from embreex import mesh_construction, rtcore_scene
+from embreex import mesh_construction, rtcore, rtcore_scene
 
+from slicer.contact.crossing import plane_crossing
+from slicer.contact.embree_device import PerProcess
+from slicer.contact.embree_direct import DirectScene, ray_function
+from slicer.contact.refine import NO_LIMITS, fill_fan, fill_rays, refine_hits
 from slicer.degenerate import DEGENERATE_TOL, mesh_scale
-from slicer.embree_direct import DirectScene, ray_function
-from slicer.refine import NO_LIMITS, fill_fan, fill_rays, refine_hits
 
-__all__ = ["EmbreeContact", "crossing_faces", "section_segments", "SMALL_BATCH"]
+__all__ = ["EmbreeContact", "SMALL_BATCH"]
 
 logger = logging.getLogger(__name__)
 
 SMALL_BATCH = 24
 """Batches up to this size keep their buffer views cached (a probe's fans)."""
 
-def crossing_faces(heights_per_face) -> np.ndarray:
-    """Indices of faces whose vertices lie on both sides of the plane.
-
-    Parameters
-    ----------
-    heights_per_face : (m, 3) float
-        Signed vertex heights of each face. A height of exactly 0 counts as
-        below the plane (half-open convention), so every selected face has
-        exactly two crossing edges.
-
-    Returns
-    -------
-    (k,) int
-    """
-    above = np.asarray(heights_per_face) > 0
-    return np.flatnonzero(above.any(axis=1) & ~above.all(axis=1))
-
-
-def section_segments(local) -> tuple[np.ndarray, np.ndarray]:
-    """Section segments of crossing triangles given in a plane frame.
-
-    Parameters
-    ----------
-    local : (k, 3, 3) float
-        Crossing triangles, coordinates ``(x, y, z)`` in the plane frame
-        (``z`` = signed height).
-
-    Returns
-    -------
-    segments : (k, 2, 2) float
-        Start and end of each segment, oriented so that the face's outward
-        in-plane normal is on the right (outer loops run CCW).
-    outward : (k, 2) float
-        Unit right-hand perpendicular ``(ey, -ex) / |e|`` (zero for a
-        zero-length segment).
-    """
-    z = local[..., 2]
-    a, b = local, np.roll(local, -1, axis=1)  # edges 0-1, 1-2, 2-0
-    za, zb = z, np.roll(z, -1, axis=1)
-    cross = (za > 0) != (zb > 0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(cross, za / (za - zb), 0.0)
-    pts = a[..., :2] + t[..., None] * (b[..., :2] - a[..., :2])
-    seg = pts[cross].reshape(-1, 2, 2)
-    fn = np.cross(local[:, 1] - local[:, 0], local[:, 2] - local[:, 0])[:, :2]
-    e = seg[:, 1] - seg[:, 0]
-    right = np.stack([e[:, 1], -e[:, 0]], axis=1)
-    flip = np.einsum("ij,ij->i", right, fn) < 0
-    seg[flip] = seg[flip][:, ::-1]
-    right[flip] *= -1
-    length = np.hypot(right[:, 0], right[:, 1])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        unit = np.where(length[:, None] > 0, right / length[:, None], 0.0)
-    return seg, unit
+_DEVICE = PerProcess(rtcore.EmbreeDevice)
+"""The embreex device of every scene of this process (embreex would open one
+per scene; see :mod:`slicer.contact.embree_device`)."""
 
 
 class EmbreeContact:
@@ -116,6 +69,8 @@ class EmbreeContact:
         ``i`` is face ``face_index[i]``.
     segments : (k, 2, 2) float
         Section segment of each scene triangle in the 2D frame.
+    outward : (k, 2) float
+        Unit outward in-plane normal of each segment.
 
     Notes
     -----
@@ -137,34 +92,28 @@ class EmbreeContact:
     """
 
     def __init__(self, mesh, plane):
-        vertices = np.asarray(mesh.vertices, dtype=np.float64)
-        faces = np.asarray(mesh.faces)
         self.plane = plane
-        local_v = (vertices - plane.origin) @ plane.basis.T
-        z = local_v[:, 2]
-        scale = mesh_scale(vertices)
+        cut = plane_crossing(mesh, plane)
+        z = cut.heights
+        scale = mesh_scale(np.asarray(mesh.vertices, dtype=np.float64))
         near = np.abs(z).min() if len(z) else np.inf
         if near < DEGENERATE_TOL * scale:
             logger.warning(
                 "plane %d passes within %.1e*scale of a vertex; contacts there "
                 "are ill-defined (nudge the plane first)", plane.index, near / scale,
             )
-        idx = crossing_faces(z[faces])
-        local = local_v[faces[idx]]
-        seg, outward = section_segments(local)
-        keep = np.any(seg[:, 0] != seg[:, 1], axis=1)  # touching-only faces
-        self.face_index = idx[keep]
-        self.segments = seg[keep]
-        self.outward = outward[keep]
+        self.face_index = cut.face_index
+        self.segments = cut.segments
+        self.outward = cut.outward
         start = self.segments[:, 0]
         edge = self.segments[:, 1] - start
         table = np.hstack([start, edge, self.outward])  # (k, 6)
         self._table = np.ascontiguousarray(table)
-        self._triangles = np.ascontiguousarray(local[keep], dtype=np.float32)
+        self._triangles = np.ascontiguousarray(cut.triangles, dtype=np.float32)
         self._scene = None
         self._kernel = None
         if len(self._triangles):
-            self._scene = rtcore_scene.EmbreeScene(robust=True)
+            self._scene = rtcore_scene.EmbreeScene(_DEVICE.get(), robust=True)
             mesh_construction.TriangleMesh(self._scene, self._triangles)
         self._cap = 0
         self._grow(64)
@@ -177,7 +126,7 @@ class EmbreeContact:
     @property
     def ray_kernel(self):
         """``(address, context)`` of the compiled one-ray function of this
-        scene (:mod:`slicer.embree_direct`: the same answers as :meth:`cast`,
+        scene (:mod:`slicer.contact.embree_direct`: the same answers as :meth:`cast`,
         callable from compiled code), or None when there is nothing to hit
         or no Embree library to call directly. Built on first use."""
         if self._kernel is None:

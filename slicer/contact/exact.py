@@ -1,9 +1,11 @@
 """Exact 2D contact backend: rays against the reference contour's segments.
 
 Pure numpy segment intersection in float64 (segments outside the bounding
-box of a batch's finite rays are culled first). It has the same ``cast`` interface
-as the Embree backend (see :mod:`core2d.sim.contact`) and is the reference for
-tests and for the stability study; the planner never sees the contour itself.
+box of a batch's finite rays are culled first). It has the same ``cast``
+interface as the two mesh backends, Embree (:mod:`slicer.contact.embree`)
+and trimesh (:mod:`slicer.contact.trimesh_ray`), see
+:mod:`core2d.sim.contact`, and is the reference for tests and for the
+stability study; the planner never sees the contour itself.
 """
 from __future__ import annotations
 
@@ -91,11 +93,16 @@ class ExactContact:
         Parameters
         ----------
         origins, dirs : (n, 2) float
+            Ray origins and directions.
         max_dist : (n,) float or float
 
         Returns
         -------
-        distances (n,), points (n, 2), normals (n, 2)
+        distances : (n,) float
+            ``inf`` where no segment is hit within ``max_dist``.
+        points : (n, 2) float
+        normals : (n, 2) float
+            Unit, oriented against the rays; both ``nan`` on a miss.
         """
         origins = np.atleast_2d(np.asarray(origins, dtype=np.float64))
         dirs = np.atleast_2d(np.asarray(dirs, dtype=np.float64))
@@ -127,6 +134,8 @@ class ExactContact:
 
     @staticmethod
     def _first_hits(starts, edges, o, d, max_dist):
+        """Nearest hit distance (n,) and segment index (n,) of rays (n, 2)
+        against segments (m, 2); ``inf`` and 0 where nothing is hit."""
         p, e = starts[None, :, :], edges[None, :, :]
         w = p - o[:, None, :]
         denom = d[:, None, 0] * e[..., 1] - d[:, None, 1] * e[..., 0]

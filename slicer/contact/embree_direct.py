@@ -1,6 +1,6 @@
 """One in-plane ray at a time on Embree's C API, callable from compiled code.
 
-:class:`slicer.embree_contact.EmbreeContact` answers batches through
+:class:`slicer.contact.embree.EmbreeContact` answers batches through
 ``embreex``: about 1 us of Python and numpy per call however few its rays.
 A probe motion resolves a contact by bisection, fan after fan of ~16 rays,
 so that per-call cost, not Embree, was most of the sensing time. This module
@@ -12,7 +12,7 @@ gives the probe simulator's compiled kernels (:mod:`core2d.sim.kernels`) a
 that casts the 2D ray with ``rtcIntersect1`` on a scene of its own and
 writes ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), with the
 same float64 refinement against the hit triangle's section segment as the
-batched path (:func:`slicer.refine.segment_hit`).
+batched path (:func:`slicer.contact.refine.segment_hit`).
 
 The scene is built as ``embreex`` builds its own (robust traversal, high
 build quality, un-indexed float32 triangles, the same float32 rays with
@@ -20,14 +20,16 @@ build quality, un-indexed float32 triangles, the same float32 rays with
 path is the batched path without the Python between the rays (tested ray
 for ray, ``tests/test_slicer_embree_direct.py``).
 
-The Embree library is the one ``embreex`` ships (``embreex.libs``) or one on
-the loader path; :func:`available` is False when neither loads, and callers
-keep to ``EmbreeContact.cast``.
+The library and the device come from :mod:`slicer.contact.embree_device`:
+one device per process for every direct scene, and every Embree call that
+can fail checked (a RuntimeError naming the call). :func:`available` is
+False when no Embree 4 library loads, and callers keep to
+``EmbreeContact.cast``.
 
 Examples
 --------
 >>> import ctypes, trimesh
->>> from slicer.embree_contact import EmbreeContact
+>>> from slicer.contact.embree import EmbreeContact
 >>> from slicer.planes import make_planes
 >>> box = trimesh.creation.box(extents=[2.0, 2.0, 2.0])
 >>> contact = EmbreeContact(box, make_planes(box, "z", offsets=[0.3])[0])
@@ -42,9 +44,7 @@ Examples
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import functools
-import glob
 import os
 import weakref
 
@@ -52,7 +52,8 @@ import numba
 import numpy as np
 from numba import types
 
-from slicer.refine import segment_hit
+from slicer.contact.embree_device import check, device, library
+from slicer.contact.refine import segment_hit
 
 __all__ = ["available", "DirectScene", "ray_function"]
 
@@ -61,57 +62,14 @@ _BUILD_HIGH = 2  # RTC_BUILD_QUALITY_HIGH
 _TRIANGLE = 0  # RTC_GEOMETRY_TYPE_TRIANGLE
 _INDEX, _VERTEX = 0, 1  # RTC_BUFFER_TYPE_*
 _UINT3, _FLOAT3 = 0x5003, 0x9003  # RTC_FORMAT_*
+_INVALID_ID = 0xFFFFFFFF  # RTC_INVALID_GEOMETRY_ID
 _HEAD = 8  # int64 words before the ray-hit record: scene, segments, offsets
 _RAYHIT = 16  # float64 words kept for one RTCRayHit (80-96 bytes, 16-aligned)
 
 
-def _library_paths() -> list[str]:
-    """Embree 4 shared libraries: the one embreex bundles first."""
-    found = []
-    try:
-        import embreex
-
-        site = os.path.dirname(os.path.dirname(embreex.__file__))
-        for sub in ("embreex.libs", ".dylibs", os.path.join("embreex", ".dylibs")):
-            found += sorted(glob.glob(os.path.join(site, sub, "*embree4*")))
-    except ImportError:  # pragma: no cover - embreex is a dependency
-        pass
-    name = ctypes.util.find_library("embree4")
-    return found + ([name] if name else [])
-
-
-@functools.lru_cache(maxsize=1)
-def _library():
-    """The loaded Embree library (ctypes) or None; also made visible to
-    numba's linker, so the compiled ray function finds ``rtcIntersect1``."""
-    from llvmlite import binding
-
-    for path in _library_paths():
-        try:
-            lib = ctypes.CDLL(path)
-            binding.load_library_permanently(path)
-        except (OSError, RuntimeError):
-            continue
-        size, uint, cint = ctypes.c_size_t, ctypes.c_uint, ctypes.c_int
-        for fname, res, args in (
-            ("rtcNewDevice", size, [ctypes.c_char_p]), ("rtcReleaseDevice", None, [size]),
-            ("rtcNewScene", size, [size]), ("rtcSetSceneFlags", None, [size, cint]),
-            ("rtcSetSceneBuildQuality", None, [size, cint]),
-            ("rtcNewGeometry", size, [size, cint]),
-            ("rtcSetNewGeometryBuffer", size, [size, cint, uint, cint, size, size]),
-            ("rtcCommitGeometry", None, [size]), ("rtcAttachGeometry", uint, [size, size]),
-            ("rtcReleaseGeometry", None, [size]), ("rtcCommitScene", None, [size]),
-            ("rtcReleaseScene", None, [size]), ("rtcGetDeviceError", cint, [size]),
-        ):
-            fn = getattr(lib, fname)
-            fn.restype, fn.argtypes = res, args
-        return lib
-    return None
-
-
 def available() -> bool:
     """Can this process build direct scenes (an Embree 4 library loads)?"""
-    return _library() is not None
+    return library() is not None
 
 
 class DirectScene:
@@ -130,34 +88,34 @@ class DirectScene:
         What :func:`ray_function` reads: the scene handle, the ray-hit record
         (one: a scene serves one thread) and the segment table. Pass
         ``context.ctypes.data``. The Embree scene is released with this
-        object, so keep it alive while the context is used.
+        object (by the process that made it), so keep it alive while the
+        context is used.
     """
 
     def __init__(self, triangles, table):
-        lib = _library()
+        lib = library()
         if lib is None:
             raise RuntimeError("no Embree 4 library could be loaded")
         tri = np.ascontiguousarray(triangles, dtype=np.float32).reshape(-1, 3, 3)
         n = len(tri)
-        device = lib.rtcNewDevice(None)
-        scene = lib.rtcNewScene(device)
+        dev = device().handle
+        scene = check(dev, "rtcNewScene", lib.rtcNewScene(dev))
+        self._release = weakref.finalize(self, _release, lib, scene, os.getpid())
         lib.rtcSetSceneFlags(scene, _ROBUST)
+        check(dev, "rtcSetSceneFlags")
         lib.rtcSetSceneBuildQuality(scene, _BUILD_HIGH)
-        geom = lib.rtcNewGeometry(device, _TRIANGLE)
+        check(dev, "rtcSetSceneBuildQuality")
         if n:
-            vert = lib.rtcSetNewGeometryBuffer(geom, _VERTEX, 0, _FLOAT3, 16, 3 * n)
-            v = np.ctypeslib.as_array((ctypes.c_float * (12 * n)).from_address(vert))
-            v.reshape(3 * n, 4)[:, :3] = tri.reshape(-1, 3)
-            index = lib.rtcSetNewGeometryBuffer(geom, _INDEX, 0, _UINT3, 12, n)
-            np.ctypeslib.as_array((ctypes.c_uint * (3 * n)).from_address(index))[:] = (
-                np.arange(3 * n, dtype=np.uint32))
-            lib.rtcCommitGeometry(geom)
-            lib.rtcAttachGeometry(scene, geom)
-        lib.rtcReleaseGeometry(geom)
+            geom = check(dev, "rtcNewGeometry", lib.rtcNewGeometry(dev, _TRIANGLE))
+            try:
+                _fill(lib, dev, geom, tri)
+                lib.rtcCommitGeometry(geom)
+                check(dev, "rtcCommitGeometry")
+                check(dev, "rtcAttachGeometry", lib.rtcAttachGeometry(scene, geom) != _INVALID_ID)
+            finally:
+                lib.rtcReleaseGeometry(geom)
         lib.rtcCommitScene(scene)
-        if lib.rtcGetDeviceError(device) != 0:
-            raise RuntimeError("Embree could not build the scene")
-        self._release = weakref.finalize(self, _release, lib, scene, device)
+        check(dev, "rtcCommitScene")
         # header | pad to 64 bytes | ray-hit record | segment table
         buf = np.zeros(_HEAD + 8 + _RAYHIT + 6 * n)
         pad = (-(buf.ctypes.data + 8 * _HEAD) % 64) // 8
@@ -169,14 +127,31 @@ class DirectScene:
         self.context = buf
 
 
-def _release(lib, scene, device) -> None:
-    lib.rtcReleaseScene(scene)
-    lib.rtcReleaseDevice(device)
+def _fill(lib, dev, geom, tri) -> None:
+    """Vertex and index buffers of ``geom``: the (k, 3, 3) triangles ``tri``
+    un-indexed, as embreex builds them."""
+    n = len(tri)
+    vert = check(dev, "rtcSetNewGeometryBuffer",
+                 lib.rtcSetNewGeometryBuffer(geom, _VERTEX, 0, _FLOAT3, 16, 3 * n))
+    v = np.ctypeslib.as_array((ctypes.c_float * (12 * n)).from_address(vert))
+    v.reshape(3 * n, 4)[:, :3] = tri.reshape(-1, 3)
+    index = check(dev, "rtcSetNewGeometryBuffer",
+                  lib.rtcSetNewGeometryBuffer(geom, _INDEX, 0, _UINT3, 12, n))
+    np.ctypeslib.as_array((ctypes.c_uint * (3 * n)).from_address(index))[:] = (
+        np.arange(3 * n, dtype=np.uint32))
+
+
+def _release(lib, scene, pid) -> None:
+    """Release a scene in the process that made it (a forked child leaves
+    its parent's scenes alone)."""
+    if os.getpid() == pid:
+        lib.rtcReleaseScene(scene)
 
 
 def _intersect():
     """``rtcIntersect1(scene, rayhit, args)`` for compiled code (pointers as
-    64-bit integers; resolved by name once :func:`_library` loaded it)."""
+    64-bit integers; resolved by name once
+    :func:`slicer.contact.embree_device.library` loaded it)."""
     return types.ExternalFunction("rtcIntersect1",
                                   types.void(types.int64, types.int64, types.int64))
 
@@ -211,7 +186,7 @@ def _ray(ctx, ox, oy, dx, dy, max_dist, out):  # pragma: no cover - compiled
 
 def _compile():
     """The ray function's address, or 0 without an Embree library."""
-    if _library() is None:
+    if library() is None:
         return 0
     return numba.cfunc(_SIGNATURE, nopython=True, cache=True, nogil=True)(_ray).address
 

@@ -1,5 +1,9 @@
 """Compiled per-ray kernels of the Embree contact backend (numba).
 
+Used by :mod:`slicer.contact.embree` (batches) and
+:mod:`slicer.contact.embree_direct` (one ray from compiled code); imports no
+ray engine.
+
 Embree answers a batch of in-plane rays with the primitive each ray hits
 first; everything around that call is done per ray here, in float64:
 

@@ -1,4 +1,4 @@
-"""trimesh's generic ray engine as a third contact backend (slicer.trimesh_contact).
+"""trimesh's generic ray engine as a third contact backend (slicer.contact.trimesh_ray).
 
 Checked against the exact 2D backend (pure numpy segment intersection on the
 reference contour) on random in-plane rays and on a full sensing run.

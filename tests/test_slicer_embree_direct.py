@@ -1,4 +1,4 @@
-"""The compiled one-ray function (slicer.embree_direct) against EmbreeContact.cast."""
+"""The compiled one-ray function (slicer.contact.embree_direct) against EmbreeContact.cast."""
 import ctypes
 
 import numpy as np

@@ -32,12 +32,13 @@ import trimesh
 
 import slicer
 from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, TOL_SHARE, InputError, at_least,
-                            check_eps, check_tol, positive)
+                            check_axes, check_backend, check_eps, check_slice_tol,
+                            check_slices, check_tol, positive)
 from recon3d.records import diagonal
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "make_config", "validate", "resolve",
-           "default_jobs", "batch_keys", "options_table", "numpydoc_params", "manifest_doc",
-           "run_signature", "BATCH_ONLY", "COARSE"]
+           "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
+           "manifest_doc", "run_signature", "BATCH_ONLY", "COARSE"]
 
 COARSE = 2.0
 """``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
@@ -61,33 +62,6 @@ def _axes(value) -> tuple:
     return axes
 
 
-def _check_slices(value):
-    if isinstance(value, str) and value != "auto":
-        raise InputError(f"slices must be an integer or 'auto' (got {value!r})")
-    return value
-
-
-def _check_backend(value):
-    if value not in slicer.BACKENDS:
-        raise InputError(f"backend must be one of {', '.join(slicer.BACKENDS)} (got {value!r})")
-    return value
-
-
-def _check_axes(axes, name):
-    if not axes:
-        raise InputError(f"give at least one {name}")
-    for a in axes:
-        try:
-            slicer.parse_axis(a)
-        except ValueError as exc:
-            raise InputError(f"{name}: {exc}") from None
-
-
-def _check_slice_tol(value, name):
-    if not 0 < positive(value, name) < 0.5:
-        raise InputError(f"{name} is a share of the diagonal in (0, 0.5) (got {value})")
-
-
 def _auto(config) -> bool:
     return config.slices == "auto"
 
@@ -106,8 +80,12 @@ class Param:
     when : callable(RunConfig) -> bool -- whether ``check`` applies (default always).
     choices : tuple, optional -- allowed values (CLI ``choices``).
     metavar : str -- metavar of the README table (``--axis A``).
-    shown_default : str -- the README default column; doc : list of (option, meaning) rows.
+    shown_default : str -- the README default column.
+    doc : tuple -- README rows: a meaning (of ``flag metavar``), or (value, meaning) for
+        a value spelled out (``--slices auto``).
     batch : bool -- a ``[params]`` key of batch manifests.
+    keyword_default, keyword_type : str, optional -- the default and type as
+        :func:`recon3d.run` takes them, where they differ from the field's (axis).
     """
 
     help: str
@@ -123,6 +101,8 @@ class Param:
     repeat: bool = False
     metavar: str = ""
     batch: bool = True
+    keyword_default: str | None = None
+    keyword_type: str | None = None
     name: str = ""  # the field name (filled in below)
 
 
@@ -143,21 +123,22 @@ class RunConfig:
     """
 
     axes: tuple = _param(
-        ("z",), key="axis", repeat=True, metavar="A", shown_default="`z`", convert=_axes,
-        check=_check_axes,
+        ("z",), key="axis", keyword_default="z", keyword_type="str, (3,) float or a list of them",
+        repeat=True, metavar="A", shown_default="`z`", convert=_axes,
+        check=check_axes,
         help="slice normal: x, y, z, -x, ... or nx,ny,nz; repeat for several families fused "
         "into one surface (default z)",
-        doc=(("`--axis A`", "slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
+        doc=(("slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
               "-1,0,0` works). Repeat it for several slice families fused into one surface"),))
     slices: int | str = _param(
-        8, parse=_slices, metavar="N", shown_default="8", convert=_check_slices,
+        8, parse=_slices, metavar="N", shown_default="8", convert=check_slices,
         check=lambda v, n: at_least(v, n), when=lambda c: not _auto(c),
         help="slices per axis (default 8), or 'auto': adaptive slicing -- start coarse, add "
         "slices where neighbouring sensed sections differ, eps per slice from the features "
         "it shows",
-        doc=(("`--slices N`", "planes per axis, evenly spaced strictly inside the mesh; a "
+        doc=(("planes per axis, evenly spaced strictly inside the mesh; a "
               "surface needs at least 2"),
-             ("`--slices auto`", "adaptive slicing (`recon3d.sensing.adaptive`): start with 3–5 "
+             ("auto", "adaptive slicing (`recon3d.sensing.adaptive`): start with 3–5 "
               "of `--max-slices` evenly spaced candidates, add the middle candidate between "
               "neighbours whose sensed sections differ by more than `--slice-tol`, and sense "
               "each slice at 2 × eps, or at eps where it shows features (parts or pockets) "
@@ -165,19 +146,19 @@ class RunConfig:
     max_slices: int = _param(
         32, parse=int, metavar="N", shown_default="32", check=lambda v, n: at_least(v, n, low=3),
         when=_auto, help="--slices auto: candidate planes per axis (default 32)",
-        doc=(("`--max-slices N`", "`--slices auto`: candidate planes per axis (the uniform run "
+        doc=(("`--slices auto`: candidate planes per axis (the uniform run "
               "it replaces)"),))
     slice_tol: float = _param(
-        0.005, parse=float, metavar="S", shown_default="0.005", check=_check_slice_tol,
+        0.005, parse=float, metavar="S", shown_default="0.005", check=check_slice_tol,
         when=_auto, help="--slices auto: refine between neighbours whose sensed sections differ "
         "by more than this share of the diagonal (default 0.005)",
-        doc=(("`--slice-tol S`", "`--slices auto`: refine between neighbours whose sensed "
+        doc=(("`--slices auto`: refine between neighbours whose sensed "
               "sections differ (Hausdorff) by more than S × diagonal"),))
     eps: float | None = _param(
         None, parse=float, metavar="E", shown_default="diagonal / 200",
         help=f"the paper's epsilon, in mesh units (default: bounding-box diagonal / 200; "
         f"allowed: {_LO:g} to {_HI:g} x diagonal)",
-        doc=(("`--eps E`", f"the paper's eps, in mesh units; must lie in **[{_LO:g}, {_HI:g}] × "
+        doc=((f"the paper's eps, in mesh units; must lie in **[{_LO:g}, {_HI:g}] × "
               f"the bounding-box diagonal** (outside: a unit mix-up or a meaningless run, "
               f"rejected); above {EPS_WARN_SHARE:g} × diagonal a warning says the numbers are "
               f"coarse"),))
@@ -185,35 +166,35 @@ class RunConfig:
         None, parse=float, metavar="T", shown_default="eps / 20",
         help=f"contact resolution (default eps/20; allowed: eps*{TOL_SHARE:g} up to, not "
         f"including, eps)",
-        doc=(("`--tol T`", f"contact resolution; must lie in **[eps / {1 / TOL_SHARE:g}, "
+        doc=((f"contact resolution; must lie in **[eps / {1 / TOL_SHARE:g}, "
               f"eps)**"),))
     backend: str = _param(
-        "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=_check_backend,
+        "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=check_backend,
         help="contact backend (default embree; trimesh: its generic ray engine, slow)",
-        doc=(("`--backend`", "`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
+        doc=(("`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
               "reference) or `trimesh` (trimesh's generic ray engine; ≈ 20–35 × slower than "
               "Embree per motion, for comparison)"),))
     max_motions: int = _param(
         20000, parse=int, metavar="M", shown_default="20000", check=lambda v, n: at_least(v, n),
         help="motion budget per slice (default 20000)",
-        doc=(("`--max-motions M`", "motion budget per slice (reported when hit)"),))
+        doc=(("motion budget per slice (reported when hit)"),))
     jobs: int | None = _param(
         None, parse=int, metavar="N", shown_default="number of cores", batch=False,
         check=lambda v, n: at_least(v, n), when=lambda c: c.jobs is not None,
         help="parallel processes (default: number of cores; results do not depend on it)",
-        doc=(("`--jobs N`", "slices run in N processes; the results are identical for every N "
+        doc=(("slices run in N processes; the results are identical for every N "
               "(tested)"),))
     probe_speed: float = _param(
         20.0, parse=float, metavar="V", shown_default="20", check=lambda v, n: positive(v, n),
         help="joint speed for the robot time, mesh units per second (default 20; scenes are "
         "in mm)",
-        doc=(("`--probe-speed V`", "joint speed for the robot time, mesh units / s (the scenes "
+        doc=(("joint speed for the robot time, mesh units / s (the scenes "
               "are in mm)"),))
     motion_overhead: float = _param(
         0.2, parse=float, metavar="S", shown_default="0.2",
         check=lambda v, n: positive(v, n, allow_zero=True),
         help="seconds per motion for the robot time (default 0.2)",
-        doc=(("`--motion-overhead S`", "seconds per motion (stop, read the sensors, plan) for "
+        doc=(("seconds per motion (stop, read the sensors, plan) for "
               "the robot time"),))
     bootstrap: int = 12  # internal: initial insertions around each slice
 
@@ -268,12 +249,17 @@ def make_config(**params) -> RunConfig:
     return RunConfig(**kw)
 
 
+def keyword_defaults() -> dict:
+    """The defaults of :func:`recon3d.run`'s keywords: key -> value."""
+    fields = {f.name: f.default for f in dataclasses.fields(RunConfig)}
+    return {p.key: fields[p.name] if p.keyword_default is None else p.keyword_default
+            for p in PARAMS}
+
+
 def run_signature(first=(), last=()) -> inspect.Signature:
     """The signature of :func:`recon3d.run`: ``first``, the parameters (keyword-only), ``last``."""
-    fields = {f.name: f for f in dataclasses.fields(RunConfig)}
-    kw = [inspect.Parameter(p.key, inspect.Parameter.KEYWORD_ONLY,
-                            default=("z" if p.key == "axis" else fields[p.name].default))
-          for p in PARAMS]
+    kw = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=v)
+          for k, v in keyword_defaults().items()]
     return inspect.Signature([*first, *kw, *last])
 
 
@@ -353,8 +339,13 @@ def options_table(extra=()) -> list[str]:
     extra : list of (option, meaning) -- flags of the command that are not
         run parameters (``--no-png``, ``--quiet``), appended with no default.
     """
-    rows = [(option, p.shown_default if k == 0 else "", meaning)
-            for p in PARAMS for k, (option, meaning) in enumerate(p.doc)]
+    rows = []
+    for p in PARAMS:
+        for row in p.doc:
+            if isinstance(row, str):  # the flag with its metavar, and the default
+                rows.append((f"`{f'{p.flag} {p.metavar}'.strip()}`", p.shown_default, row))
+            else:  # (a value of the flag spelled out, meaning)
+                rows.append((f"`{p.flag} {row[0]}`", "", row[1]))
     rows += [(option, "", meaning) for option, meaning in extra]
     return ["| option | default | meaning |", "|---|---|---|"] + [
         f"| {option} | {default + ' ' if default else ''}| {meaning} |"
@@ -363,12 +354,10 @@ def options_table(extra=()) -> list[str]:
 
 def numpydoc_params() -> str:
     """The run parameters as a numpydoc ``Parameters`` block (for :func:`recon3d.run`)."""
-    fields = {f.name: f for f in dataclasses.fields(RunConfig)}
-    out = []
-    for p in PARAMS:
-        default = "'z'" if p.key == "axis" else repr(fields[p.name].default)
-        out.append(f"{p.key} : {fields[p.name].type}, default {default}\n    {p.help}.")
-    return "\n".join(out)
+    types = {f.name: f.type for f in dataclasses.fields(RunConfig)}
+    defaults = keyword_defaults()
+    return "\n".join(f"{p.key} : {p.keyword_type or types[p.name]}, default "
+                     f"{defaults[p.key]!r}\n    {p.help}." for p in PARAMS)
 
 
 def manifest_doc() -> str:

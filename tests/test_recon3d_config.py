@@ -53,10 +53,11 @@ def test_run_keywords_are_the_parameters_with_the_dataclass_defaults():
     assert kw == [p.key for p in PARAMS]
     defaults = RunConfig()
     for p in PARAMS:
-        want = "z" if p.key == "axis" else getattr(defaults, p.name)
-        assert sig.parameters[p.key].default == want
+        want = getattr(defaults, p.name)
+        assert make_config(**{p.key: sig.parameters[p.key].default}) == defaults
+        assert sig.parameters[p.key].default == (want if p.key != "axis" else "z")
         assert f"{p.key} :" in recon3d.run.__doc__
-    assert make_config() == defaults == make_config(axis="z")
+    assert make_config() == defaults
     with pytest.raises(TypeError, match="unexpected keyword argument 'speed'"):
         make_config(speed=3)
 

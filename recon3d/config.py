@@ -34,9 +34,9 @@ import slicer
 from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, TOL_SHARE, InputError, at_least,
                             check_axes, check_backend, check_eps, check_slice_tol,
                             check_slices, check_tol, positive)
-from recon3d.records import diagonal
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "make_config", "validate", "resolve",
+           "diagonal",
            "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
            "manifest_doc", "run_signature", "BATCH_ONLY", "COARSE"]
 
@@ -220,6 +220,19 @@ BATCH_ONLY = {"eps_share": ("eps", "eps as a share of the mesh diagonal (instead
 """Manifest keys that are not run parameters: key -> (the parameter it sets, meaning)."""
 
 
+def diagonal(mesh: trimesh.Trimesh) -> float:
+    """Bounding-box diagonal of a mesh (its referenced vertices, as ``mesh.bounds``).
+
+    :func:`slicer.mesh_scale` of the bounds: bit for bit the norm of
+    ``np.ptp(mesh.bounds, axis=0)`` (``mesh_scale(mesh)`` itself spans every
+    vertex, unreferenced ones too).
+
+    >>> diagonal(trimesh.creation.box(extents=[3.0, 4.0, 12.0]))
+    13.0
+    """
+    return slicer.mesh_scale(mesh.bounds)
+
+
 def batch_keys() -> tuple[str, ...]:
     """The keys of a manifest's ``[params]``: the run parameters (not jobs) and eps_share."""
     out = []
@@ -267,7 +280,7 @@ def run_signature(first=(), last=()) -> inspect.Signature:
 class Resolved:
     """The defaults of a run that derive from the mesh, resolved once.
 
-    diagonal : float -- bounding-box diagonal (:func:`recon3d.records.diagonal`).
+    diagonal : float -- bounding-box diagonal (:func:`diagonal`).
     eps, tol : float -- ``config.eps`` or diagonal / 200; ``config.tol`` or eps / 20.
     tol_share : float -- tol / eps as adaptive slicing scales it (1/20 by default).
     first_eps : float -- the eps of the first pass (COARSE x eps for ``--slices auto``).

@@ -1,6 +1,6 @@
 """Plain data shared by the rooms of recon3d: a run, its families and slices.
 
-Imports no room of recon3d (like core2d's shared modules): sensing fills
+Imports no room of recon3d, only :mod:`recon3d.config` (like core2d's shared modules): sensing fills
 these records, surface/, score/, io/ and viz/ read them.
 
 * :class:`SliceRun` -- one sensed slice (what a worker sends back, picklable);
@@ -8,24 +8,20 @@ these records, surface/, score/, io/ and viz/ read them.
 * :class:`MeshRun` -- a whole run over the families of one mesh;
 * the integer codes of the pictures and the surface (:data:`LABELS`,
   :data:`CURVE_CLASSES`, :data:`COVERAGE_CLASSES`);
-* :func:`diagonal` and :func:`robot_time`, the two formulas every room uses.
+* :func:`robot_time`, the robot's time model.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
-
 import numpy as np
 import trimesh
 
 import core2d
 import slicer
 from core2d.truth.metrics import total_metrics
+from recon3d.config import RunConfig, diagonal
 
-if TYPE_CHECKING:  # annotations only
-    from recon3d.config import RunConfig
-
-__all__ = ["ContourTruth", "SliceRun", "Family", "MeshRun", "diagonal", "robot_time",
+__all__ = ["ContourTruth", "SliceRun", "Family", "MeshRun", "robot_time",
            "LABELS", "CURVE_CLASSES", "COVERAGE_CLASSES"]
 
 LABELS = {1: "W1 traced", 2: "W2 approximated", 3: "W3 lid", 4: "between slices", 5: "cap"}
@@ -37,19 +33,6 @@ CURVE_CLASSES = {1: "W1", 2: "W2", 3: "W3", 4: "unknown"}
 COVERAGE_CLASSES = {0: "outside the slab", 1: "touched", 2: "reachable, missed",
                     3: "unreachable"}
 """Ground-truth coverage classes (:func:`recon3d.score.evaluate.coverage_mesh`)."""
-
-
-def diagonal(mesh: trimesh.Trimesh) -> float:
-    """Bounding-box diagonal of a mesh (its referenced vertices, as ``mesh.bounds``).
-
-    :func:`slicer.mesh_scale` of the bounds: bit for bit the norm of
-    ``np.ptp(mesh.bounds, axis=0)`` (``mesh_scale(mesh)`` itself spans every
-    vertex, unreferenced ones too).
-
-    >>> diagonal(trimesh.creation.box(extents=[3.0, 4.0, 12.0]))
-    13.0
-    """
-    return slicer.mesh_scale(mesh.bounds)
 
 
 def robot_time(stats: dict, probe_speed: float, motion_overhead: float) -> float:

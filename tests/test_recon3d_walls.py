@@ -2,7 +2,7 @@
 
 * Rooms, each with one job: ``sensing/``, ``surface/``, ``score/``, ``io/``,
   ``viz/``, ``jobs/``, ``cli/``, ``benchmark/``; the shared modules
-  ``checks``, ``config`` and ``records`` import no room; ``api`` joins the
+  ``checks`` <- ``config`` <- ``records`` import no room; ``api`` joins the
   rooms for ``recon3d.run``. Every arrow points one way (ALLOWED).
 * Nothing imports ``recon3d.cli`` but ``recon3d/__main__.py`` (and the
   console script); ``surface/``, ``score/``, ``io/`` and ``viz/`` never
@@ -107,6 +107,14 @@ def test_every_import_arrow_points_one_way(path):
         ok = (mod in SHARED or mod == own or mod.startswith(own + ".")
               or any(mod == a or mod.startswith(a + ".") for a in ALLOWED[room]))
         assert ok, f"{path.relative_to(RECON3D)}:{line} ({room}) imports {mod}"
+
+
+def test_the_shared_modules_import_one_way_and_no_room():
+    order = ["recon3d.checks", "recon3d.config", "recon3d.records"]
+    for k, name in enumerate(order):
+        path = RECON3D / f"{name.split('.')[1]}.py"
+        mods = {m for m, _, _ in _imports(path) if m.startswith("recon3d")}
+        assert mods <= set(order[:k]), f"{name} imports {sorted(mods - set(order[:k]))}"
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))

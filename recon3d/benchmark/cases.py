@@ -12,7 +12,7 @@ import trimesh
 
 import meshes
 import slicer
-from recon3d.records import diagonal
+from recon3d.config import diagonal
 
 __all__ = ["SHARED", "REAL", "case_list", "diagonal", "middle_slice", "workspace"]
 

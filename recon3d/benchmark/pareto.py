@@ -17,7 +17,7 @@ import numpy as np
 import meshes
 import recon3d
 from recon3d.benchmark.cases import case_list
-from recon3d.records import diagonal
+from recon3d.config import diagonal
 
 __all__ = ["FULL", "QUICK", "pareto_tasks", "run_case", "pareto_front", "adaptive_summary"]
 

@@ -41,7 +41,7 @@ import slicer
 from core2d import sense_slice
 from core2d.truth.metrics import slice_metrics
 from recon3d.benchmark.cases import workspace
-from recon3d.records import diagonal
+from recon3d.config import diagonal
 
 __all__ = ["NoisyContact", "stability_tasks", "run_factor", "breaking_points", "METHODS"]
 

@@ -5,7 +5,8 @@ import sys
 from pathlib import Path
 
 from recon3d.api import Result
-from recon3d.records import MeshRun, SliceRun, diagonal
+from recon3d.config import diagonal
+from recon3d.records import MeshRun, SliceRun
 
 __all__ = ["warn", "summary_lines", "format_seconds"]
 

@@ -37,11 +37,11 @@ import numpy as np
 import meshes
 from recon3d.api import Result, execute, load_input
 from recon3d.checks import InputError
-from recon3d.config import BATCH_ONLY, RunConfig, batch_keys, make_config, validate
+from recon3d.config import BATCH_ONLY, RunConfig, batch_keys, diagonal, make_config, validate
 from recon3d.io.outputs import write_json
 from recon3d.io.ply import write_ply
 from recon3d.io.staged import Staged
-from recon3d.records import diagonal
+
 
 __all__ = ["Job", "read_manifest", "run_job", "write_batch", "COLUMNS"]
 

@@ -33,7 +33,8 @@ import numpy as np
 import trimesh
 from scipy.spatial import cKDTree
 
-from recon3d.records import Family, diagonal
+from recon3d.config import diagonal
+from recon3d.records import Family
 from recon3d.viz import libs
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",

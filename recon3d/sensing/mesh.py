@@ -18,8 +18,8 @@ from collections.abc import Callable
 import trimesh
 
 import slicer
-from recon3d.config import RunConfig, resolve
-from recon3d.records import Family, MeshRun, SliceRun, diagonal, robot_time
+from recon3d.config import RunConfig, diagonal, resolve
+from recon3d.records import Family, MeshRun, SliceRun, robot_time
 from recon3d.sensing.adaptive import AdaptivePlan, sense_adaptive
 from recon3d.sensing.pool import sense_all
 from recon3d.sensing.worker import SenseSettings, family_slices

@@ -10,7 +10,8 @@ from dataclasses import dataclass, field
 
 import trimesh
 
-from recon3d.records import MeshRun, diagonal
+from recon3d.config import diagonal
+from recon3d.records import MeshRun
 from recon3d.surface.closure import SliceRegion, slice_region
 from recon3d.surface.field import grid_step
 from recon3d.surface.solid import FamilySolid, family_solid, fuse

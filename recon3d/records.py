@@ -1,7 +1,7 @@
 """Plain data shared by the rooms of recon3d: a run, its families and slices.
 
-Imports no room of recon3d, only :mod:`recon3d.config` (like core2d's shared modules): sensing fills
-these records, surface/, score/, io/ and viz/ read them.
+Imports no room of recon3d, only :mod:`recon3d.config` (like core2d's shared
+modules): sensing fills these records, surface/, score/, io/ and viz/ read them.
 
 * :class:`SliceRun` -- one sensed slice (what a worker sends back, picklable);
 * :class:`Family` -- the slices cut by one plane normal;
@@ -13,6 +13,7 @@ these records, surface/, score/, io/ and viz/ read them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+
 import numpy as np
 import trimesh
 

@@ -18,13 +18,23 @@ from collections.abc import Callable
 import trimesh
 
 import slicer
-from recon3d.config import RunConfig, diagonal, resolve
+from recon3d.config import Resolved, RunConfig, diagonal, resolve
 from recon3d.records import Family, MeshRun, SliceRun, robot_time
 from recon3d.sensing.adaptive import AdaptivePlan, sense_adaptive
 from recon3d.sensing.pool import sense_all
 from recon3d.sensing.worker import SenseSettings, family_slices
 
 __all__ = ["sense_mesh"]
+
+
+def _sense_uniform(sense, cuts: list, res: Resolved):
+    """Every plane of every family at the run's eps (the uniform plan; returns as
+    :func:`recon3d.sensing.adaptive.sense_adaptive` does, without its ``info``)."""
+    got = [dict() for _ in cuts]
+    tasks = [(f, i) for f, fam in enumerate(cuts) for i in range(len(fam))]
+    for out in sense(tasks):
+        got[out.family][out.index] = (out, res.eps)
+    return got, res.eps, res.tol, None
 
 
 def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
@@ -62,11 +72,7 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
         got, eps, tol, info = sense_adaptive(plan, sense, len(normals), res.tol_share,
                                              config.probe_speed, config.motion_overhead)
     else:
-        tasks = [(f, i) for f, fam in enumerate(cuts) for i in range(len(fam))]
-        got = [dict() for _ in normals]
-        for out in sense(tasks):
-            got[out.family][out.index] = (out, res.eps)
-        eps, tol, info = res.eps, res.tol, None
+        got, eps, tol, info = _sense_uniform(sense, cuts, res)
     run = MeshRun(name, mesh, config, eps, tol, probe_length=res.probe_length, jobs=res.jobs,
                   families=[Family(n) for n in normals], adaptive=info)
     for f, fam in enumerate(run.families):

@@ -74,7 +74,7 @@ def run(root: Path, mesh: Path, slices: int, jobs: int, out: Path) -> dict:
 
 def _same(a: dict, b: dict) -> bool:
     sys.path.insert(0, str(ROOT))
-    from recon3d.output import without_timing
+    from recon3d.io import without_timing
 
     return without_timing(a) == without_timing(b)
 

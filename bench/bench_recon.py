@@ -21,7 +21,7 @@ import numpy as np
 
 import meshes
 import recon3d
-from recon3d.output import without_timing
+from recon3d.io import without_timing
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
 REAL = ("trimesh_featuretype.stl", "mujoco_spot.ply", "trimesh_idler_riser.stl")

@@ -1,10 +1,10 @@
 """recon3d: slice-based pulling-motion tactile sensing of 3D meshes, end to end.
 
-The pipeline over slices (:mod:`recon3d.pipeline`), the reconstructed
-watertight surface (:mod:`recon3d.closure`, :mod:`recon3d.field`,
-:mod:`recon3d.surface`), its 3D metrics (:mod:`recon3d.evaluate`), the
-pyvista pictures (:mod:`recon3d.scene`, :mod:`recon3d.plot`) and the command
-line (:mod:`recon3d.cli`).
+Sensing over slices (:mod:`recon3d.sensing`), the reconstructed watertight
+surface (:mod:`recon3d.surface`), its 3D scores (:mod:`recon3d.score`),
+files (:mod:`recon3d.io`), pictures (:mod:`recon3d.viz`), many runs on Dask
+(:mod:`recon3d.jobs`) and the command line (``recon3d``, :mod:`recon3d.cli`);
+the run parameters in one place (:mod:`recon3d.config`).
 
 Example (the README has more)::
 
@@ -15,8 +15,8 @@ Example (the README has more)::
 """
 from recon3d.api import Result, run
 from recon3d.checks import InputError
-from recon3d.pipeline import RunConfig
-from recon3d.save import read_ply_labels
-from recon3d.surface import LABELS
+from recon3d.config import RunConfig
+from recon3d.io.ply import read_ply_labels
+from recon3d.records import LABELS
 
 __all__ = ["run", "Result", "RunConfig", "InputError", "LABELS", "read_ply_labels"]

@@ -21,8 +21,11 @@ import os
 import tempfile
 from pathlib import Path
 
+import slicer
+
 __all__ = ["InputError", "EPS_SHARE", "EPS_WARN_SHARE", "TOL_SHARE", "positive",
-           "check_eps", "check_tol", "check_out_dir", "at_least"]
+           "check_eps", "check_tol", "check_out_dir", "at_least", "check_slices",
+           "check_backend", "check_axes", "check_slice_tol"]
 
 EPS_SHARE = (1e-4, 0.25)
 """eps bounds as shares of the mesh bounding-box diagonal."""
@@ -114,3 +117,34 @@ def check_out_dir(path, name: str = "out") -> bool:
     except OSError as exc:
         raise InputError(f"cannot create {name} {p}: {parent}: {exc.strerror}") from None
     return False
+
+
+def check_slices(value):
+    """``slices``: an integer (checked later) or 'auto'."""
+    if isinstance(value, str) and value != "auto":
+        raise InputError(f"slices must be an integer or 'auto' (got {value!r})")
+    return value
+
+
+def check_backend(value):
+    """``backend``: one of ``slicer.BACKENDS``."""
+    if value not in slicer.BACKENDS:
+        raise InputError(f"backend must be one of {', '.join(slicer.BACKENDS)} (got {value!r})")
+    return value
+
+
+def check_axes(axes, name: str) -> None:
+    """At least one axis, each one ``slicer.parse_axis`` takes."""
+    if not axes:
+        raise InputError(f"give at least one {name}")
+    for a in axes:
+        try:
+            slicer.parse_axis(a)
+        except ValueError as exc:
+            raise InputError(f"{name}: {exc}") from None
+
+
+def check_slice_tol(value, name: str) -> None:
+    """``slice_tol``: a share of the diagonal in (0, 0.5)."""
+    if not 0 < positive(value, name) < 0.5:
+        raise InputError(f"{name} is a share of the diagonal in (0, 0.5) (got {value})")

@@ -5,7 +5,7 @@ import json
 import pytest
 
 from recon3d.cli import main
-from recon3d.output import without_timing
+from recon3d.io import without_timing
 
 MANIFEST = """
 meshes = ["fig17_pocket", "stepped_pyramid"]

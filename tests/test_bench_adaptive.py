@@ -1,4 +1,4 @@
-"""Adaptive slicing (``recon3d run --slices auto``, recon3d.adaptive).
+"""Adaptive slicing (``recon3d run --slices auto``, recon3d.sensing.adaptive).
 
 Checked on solids whose sections are known: a post on a plate (the section
 changes at one height only), a plain box (never changes), and a plate with a
@@ -11,7 +11,7 @@ from shapely.geometry import Polygon, box
 
 import meshes
 import recon3d
-from recon3d.adaptive import feature_width, refine_pairs, region_difference
+from recon3d.sensing.adaptive import feature_width, refine_pairs, region_difference
 
 
 def _mesh(solid):

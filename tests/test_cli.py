@@ -10,7 +10,7 @@ import trimesh
 
 import meshes
 from recon3d.cli import main
-from recon3d.output import without_timing
+from recon3d.io import without_timing
 
 OUTPUTS = {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene", "coverage.png"}
 
@@ -168,9 +168,9 @@ def test_existing_file_as_output_is_rejected(tmp_path, capsys):
 
 
 def test_negative_axis_values_parse():
-    from recon3d.cli import _join_axis_values, build_parser
+    from recon3d.cli.main import build_parser, join_axis_values
 
-    argv = _join_axis_values(["run", "s", "--out", "o", "--axis", "-1,0,0", "--axis", "-x",
+    argv = join_axis_values(["run", "s", "--out", "o", "--axis", "-1,0,0", "--axis", "-x",
                               "--axis", "z"])
     assert build_parser().parse_args(argv).axis == ["-1,0,0", "-x", "z"]
 

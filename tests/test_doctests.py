@@ -30,7 +30,7 @@ MODULES = [
     "core2d.planner.tip_bound",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
-    "recon3d.output",
+    "recon3d.io.documents",
 ]
 
 

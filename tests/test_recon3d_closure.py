@@ -1,9 +1,9 @@
-"""Closing the sensed pieces of one slice into a filled region (recon3d.closure)."""
+"""Closing the sensed pieces of one slice into a filled region (recon3d.surface.closure)."""
 import numpy as np
 import pytest
 import shapely
 
-from recon3d.closure import sample_pieces, slice_region
+from recon3d.surface.closure import sample_pieces, slice_region
 
 SQUARE = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
 

@@ -1,4 +1,4 @@
-"""3D metrics (recon3d.evaluate) against analytic answers, and recon3d's doctests."""
+"""3D metrics (recon3d.score.evaluate) against analytic answers, and recon3d's doctests."""
 import doctest
 import importlib
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from recon3d.evaluate import (ContourCloud, Domain, GroundTruthSamples, _scores,
+from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, _scores,
                               surface_metrics)
 
 R = 10.0
@@ -105,8 +105,10 @@ def test_classify_uses_only_families_whose_slab_holds_the_point():
     assert got.tolist() == [3, 1, 0]
 
 
-@pytest.mark.parametrize("name", ["recon3d.closure", "recon3d.field", "recon3d.pipeline",
-                                  "recon3d.summary", "recon3d.api", "recon3d"])
+@pytest.mark.parametrize("name", ["recon3d.surface.closure", "recon3d.surface.field",
+                                  "recon3d.records", "recon3d.config", "recon3d.io.staged",
+                                  "recon3d.cli.printing", "recon3d.sensing.adaptive",
+                                  "recon3d.api", "recon3d"])
 def test_doctests(name):
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.failed == 0

@@ -129,7 +129,7 @@ def test_plot_renders_offscreen(pocket, tmp_path):
 
 def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, tmp_path,
                                                                        monkeypatch):
-    import recon3d.plot
+    import recon3d.viz.plot
 
     def no_gl(*args, **kwargs):
         raise RuntimeError("no EGL\ndevice")
@@ -137,7 +137,7 @@ def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, 
     out = tmp_path / "o"
     out.mkdir()
     (out / "coverage.png").write_bytes(b"old picture")
-    monkeypatch.setattr(recon3d.plot, "save_png", no_gl)
+    monkeypatch.setattr(recon3d.viz.plot, "save_png", no_gl)
     with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
         files = pocket.save(out)
     assert {p.name for p in files} == {"sensing.json", "metrics.json", "surface.ply",
@@ -146,12 +146,12 @@ def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, 
 
 
 def test_failed_save_leaves_nothing(pocket, tmp_path, monkeypatch):
-    import recon3d.save
+    import recon3d.io.ply
 
     def broken(*args, **kwargs):
         raise OSError("disk full")
 
-    monkeypatch.setattr(recon3d.save, "write_ply", broken)
+    monkeypatch.setattr(recon3d.io.ply, "write_ply", broken)
     with pytest.raises(OSError):
         pocket.save(tmp_path / "new" / "deeper")
     assert not (tmp_path / "new").exists()

@@ -1,4 +1,4 @@
-"""The stacked surface (recon3d.field / recon3d.surface) from exact slice regions.
+"""The stacked surface (recon3d.surface.field / recon3d.surface.solid) from exact slice regions.
 
 Regions are made from the true cross-sections (as if every loop were traced,
 W1), so every difference from the ground truth is the reconstruction's.
@@ -10,10 +10,10 @@ import trimesh
 from manifold3d import Manifold
 
 import slicer
-from recon3d.closure import slice_region
-from recon3d.field import grid_step
-from recon3d.save import read_ply_labels, write_ply
-from recon3d.surface import family_solid, fuse
+from recon3d.io.ply import read_ply_labels, write_ply
+from recon3d.surface.closure import slice_region
+from recon3d.surface.field import grid_step
+from recon3d.surface.solid import family_solid, fuse
 
 
 def _mesh(man: Manifold) -> trimesh.Trimesh:
@@ -30,7 +30,8 @@ def _solid(mesh, axis, count, step):
 
 
 def _written(tmp_path, surface, name="s.ply"):
-    write_ply(tmp_path / name, surface)
+    write_ply(tmp_path / name, surface.vertices, surface.faces,
+              surface.face_attributes["label"])
     return read_ply_labels(tmp_path / name)
 
 

@@ -4,5 +4,5 @@ baseline and the stability study, as Dask tasks (:mod:`recon3d.benchmark.run3d`)
 One module per part: :mod:`.pareto` (eps x slices, uniform and ``--slices
 auto``), :mod:`.backends`, :mod:`.baseline`, :mod:`.stability`; :mod:`.cases`
 the scenes and meshes they use; :mod:`.charts` the matplotlib pictures (kept
-apart from the data).
+apart from the data; matplotlib comes through :mod:`recon3d.viz.libs`).
 """

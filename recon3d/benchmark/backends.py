@@ -8,7 +8,14 @@ nothing: the kind of the nearest sensed piece within eps / 2) is the same.
 """
 from __future__ import annotations
 
+import time
+
 import numpy as np
+import shapely
+
+from core2d import sense_slice
+from core2d.truth.reachability import sample_contour
+from recon3d.benchmark.cases import case_list, middle_slice, workspace
 
 __all__ = ["BACKEND_NAMES", "backend_tasks", "compare_slice", "class_labels"]
 
@@ -17,8 +24,6 @@ BACKEND_NAMES = ("embree", "exact", "trimesh")
 
 def backend_tasks(quick: bool) -> list[dict]:
     """Middle z-slices of a few scenes (and Spot when present)."""
-    from recon3d.benchmark.cases import case_list
-
     scenes = ("fig18_overhangs", "stepped_pyramid") if quick else (
         "fig18_overhangs", "stepped_pyramid", "mushroom", "gear")
     share = 1 / 50 if quick else 1 / 100
@@ -33,10 +38,6 @@ def class_labels(loops, result, eps: float, spacing: float):
     -------
     labels : (m,) int, lengths : (m,) float
     """
-    import shapely
-
-    from core2d.truth.reachability import sample_contour
-
     samp = sample_contour(loops, spacing)
     pieces, kinds = [], []
     for kind, parts in ((1, result.w1), (2, result.w2), (3, result.w3)):
@@ -58,19 +59,12 @@ def _warm(model, ws, eps) -> None:
     """Load (or compile) the numba kernels a backend, the simulator and the
     planner use, so that no timing pays for them: a cast of 40 rays and a
     short sensing run (200 motions) on the slice."""
-    from core2d import sense_slice
-
     model.cast(np.zeros((40, 2)), np.tile([1.0, 0.0], (40, 1)), 1.0)
     sense_slice(model, ws, eps, max_motions=200)
 
 
 def compare_slice(task: dict) -> list[dict]:
     """Sense one slice with every backend; one row per backend."""
-    import time
-
-    from recon3d.benchmark.cases import middle_slice, workspace
-    from core2d import sense_slice
-
     mesh, diag, slc = middle_slice(task["source"])
     eps = task["eps_share"] * diag
     loops = [np.asarray(lp) for lp in slc.loops]

@@ -12,9 +12,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from core2d import sense_slice
+from core2d.truth.metrics import slice_metrics
+from recon3d.benchmark.cases import case_list, middle_slice, workspace
+from recon3d.config import RunConfig
+from recon3d.records import robot_time
+
 __all__ = ["baseline_tasks", "compare_probing", "equal_coverage", "DENSITIES"]
 
-SPEED, OVERHEAD = 20.0, 0.2  # the defaults of recon3d run (mesh units / s, s / motion)
+SPEED, OVERHEAD = RunConfig.probe_speed, RunConfig.motion_overhead  # recon3d run's defaults
 DENSITIES = {"full": ((4, 6, 8, 12, 16, 24, 32, 48), (2.0, 1.5, 1.0, 0.75, 0.5)),
              "quick": ((4, 8, 12, 16, 24, 32), (2.0, 1.0, 0.5))}
 """Finger densities: directions x line spacing (in eps). Steps of at most 1.5x
@@ -24,8 +30,6 @@ in each, so the cheapest density reaching a coverage is found within 1.5x
 
 def baseline_tasks(quick: bool) -> list[dict]:
     """Middle z-slices of the scenes that satisfy the paper's assumptions (and real meshes)."""
-    from recon3d.benchmark.cases import case_list
-
     scenes = ("fig17_pocket", "fig18_overhangs", "stepped_pyramid") if quick else (
         "fig17_pocket", "fig18_overhangs", "stepped_pyramid", "mushroom", "gear", "dovetail")
     share = 1 / 100 if quick else 1 / 200
@@ -34,9 +38,6 @@ def baseline_tasks(quick: bool) -> list[dict]:
 
 
 def _row(case, method, res, loops, eps, **extra):
-    from core2d.truth.metrics import slice_metrics
-    from recon3d.pipeline import robot_time
-
     st = res.stats.as_dict()
     m = slice_metrics(loops, res, eps)
     return {"case": case, "method": method, **extra, "coverage": m["coverage"],
@@ -47,9 +48,6 @@ def _row(case, method, res, loops, eps, **extra):
 
 def compare_probing(task: dict) -> list[dict]:
     """Pulling once and finger probing at every density on one slice."""
-    from recon3d.benchmark.cases import middle_slice, workspace
-    from core2d import sense_slice
-
     _, diag, slc = middle_slice(task["source"])
     eps = task["eps_share"] * diag
     loops = [np.asarray(lp) for lp in slc.loops]

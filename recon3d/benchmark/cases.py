@@ -8,6 +8,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import trimesh
+
+import meshes
+import slicer
+from recon3d.config import diagonal
 
 __all__ = ["SHARED", "REAL", "case_list", "diagonal", "middle_slice", "workspace"]
 
@@ -23,22 +28,15 @@ def case_list(scenes, real: bool = True) -> list[tuple[str, str]]:
     return out
 
 
-def diagonal(mesh) -> float:
-    """Bounding-box diagonal of a mesh."""
-    return float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
-
-
-def workspace(slc, eps: float):
+def workspace(slc: slicer.Slice, eps: float) -> tuple[np.ndarray, float]:
     """The robot's workspace circle of a slice (as the pipeline builds it)."""
     center, radius = slc.bounding_circle()
     return np.asarray(center, float), float(radius) + eps
 
 
-def middle_slice(source, axis: str = "z", count: int = 3, index: int | None = None):
+def middle_slice(source, axis: str = "z", count: int = 3,
+                 index: int | None = None) -> tuple[trimesh.Trimesh, float, slicer.Slice]:
     """The mesh, its diagonal and slice ``index`` (default the middle) of ``count``."""
-    import meshes
-    import slicer
-
     mesh = meshes.load(source)
     cuts = slicer.slice_mesh(mesh, axis, count=count)
     return mesh, diagonal(mesh), cuts[count // 2 if index is None else index]

@@ -6,16 +6,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from recon3d.viz import libs
+
 __all__ = ["pareto_chart", "baseline_chart", "stability_chart"]
 
 
 def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    return libs.pyplot()
 
 
 def _colours(cases):
@@ -26,8 +23,7 @@ def _colours(cases):
 
 def _plain_log_x(ax):
     """Log x axis with plain tick labels (1, 2, 5, 10, ...)."""
-    from matplotlib.ticker import FuncFormatter, LogLocator
-
+    FuncFormatter, LogLocator = libs.ticker().FuncFormatter, libs.ticker().LogLocator
     ax.set_xscale("log")
     ax.xaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     ax.xaxis.set_minor_locator(LogLocator(base=10, subs=tuple(range(1, 10))))

@@ -14,6 +14,11 @@ import warnings
 
 import numpy as np
 
+import meshes
+import recon3d
+from recon3d.benchmark.cases import case_list
+from recon3d.config import diagonal
+
 __all__ = ["FULL", "QUICK", "pareto_tasks", "run_case", "pareto_front", "adaptive_summary"]
 
 FULL = {"scenes": ("fig17_pocket", "fig18_overhangs", "stepped_pyramid", "bowl"),
@@ -29,8 +34,6 @@ full sweep is sized to finish within ~45 minutes on 2 shared cores)."""
 
 def pareto_tasks(plan: dict) -> list[dict]:
     """Every (case, slices, eps share) of ``plan`` plus one adaptive run per case."""
-    from recon3d.benchmark.cases import case_list
-
     tasks = []
     for name, source in case_list(plan["scenes"], plan["real"]):
         for share in plan["eps_shares"]:
@@ -44,10 +47,6 @@ def pareto_tasks(plan: dict) -> list[dict]:
 
 def run_case(task: dict) -> dict:
     """Run one task; its row of ``pareto.csv``."""
-    import meshes
-    import recon3d
-    from recon3d.benchmark.cases import diagonal
-
     mesh = meshes.load(task["source"])
     diag = diagonal(mesh)
     kw = {"max_slices": task["max_slices"]} if task["method"] == "adaptive" else {}

@@ -2,22 +2,24 @@
 
 Parts (``--parts``; all by default):
 
-* ``pareto`` -- :mod:`bench.pareto`: pareto.csv / pareto.png, adaptive.csv;
-* ``backends`` -- :mod:`bench.backends`: backends.csv;
-* ``baseline`` -- :mod:`bench.baseline`: baseline.csv / baseline.png;
-* ``stability`` -- :mod:`bench.stability`: stability.csv / stability.png, breaks.csv.
+* ``pareto`` -- :mod:`.pareto`: pareto.csv / pareto.png, adaptive.csv;
+* ``backends`` -- :mod:`.backends`: backends.csv;
+* ``baseline`` -- :mod:`.baseline`: baseline.csv / baseline.png;
+* ``stability`` -- :mod:`.stability`: stability.csv / stability.png, breaks.csv.
 
-All tasks of all parts go to one Dask cluster (:func:`recon3d.distributed.run_tasks`),
-longest first. Files are written at the end, all together.
+All tasks of all parts go to one Dask cluster (:func:`recon3d.jobs.cluster.run_tasks`),
+longest first. Files are written at the end, all together (:class:`recon3d.io.staged.Staged`).
 """
 from __future__ import annotations
 
 import csv
+import logging
 import math
-import os
-import shutil
-import tempfile
-from pathlib import Path
+import time
+
+from recon3d.benchmark import backends, baseline, charts, pareto, stability
+from recon3d.io.staged import Staged
+from recon3d.jobs.cluster import run_tasks
 
 __all__ = ["PARTS", "run_bench", "dispatch", "write_csv"]
 
@@ -26,11 +28,6 @@ PARTS = ("pareto", "backends", "baseline", "stability")
 
 def dispatch(task: dict) -> dict:
     """Run one task of any part (the function Dask workers call): its rows and seconds."""
-    import logging
-    import time
-
-    from recon3d.benchmark import backends, baseline, pareto, stability
-
     logging.getLogger("slicer").setLevel(logging.ERROR)  # planes near vertices: on purpose
     fn = {"pareto": pareto.run_case, "backends": backends.compare_slice,
           "baseline": baseline.compare_probing, "stability": stability.run_factor}[task["part"]]
@@ -45,8 +42,6 @@ def dispatch(task: dict) -> dict:
 
 
 def _tasks(parts, quick):
-    from recon3d.benchmark import backends, baseline, pareto, stability
-
     plan = pareto.QUICK if quick else pareto.FULL
     made = {"pareto": lambda: pareto.pareto_tasks(plan),
             "backends": lambda: backends.backend_tasks(quick),
@@ -91,9 +86,6 @@ def _table(lines, head, rows, keys, fmts):
 def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PARTS,
               quiet: bool = False) -> list[str]:
     """Run the parts, write their files into ``out``; the printed table's lines."""
-    from recon3d.benchmark import backends, baseline, charts, pareto, stability
-    from recon3d.distributed import run_tasks
-
     tasks, plan = _tasks(parts, quick)
     results = run_tasks(dispatch, tasks, scheduler, workers, desc="bench", quiet=quiet)
     by = {p: [] for p in PARTS}
@@ -104,10 +96,7 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
             "case", "factor", "value", "slices", "eps_share")}, "seconds": r["seconds"],
             "error": r["error"]})
     lines = [f"recon3d bench{' --quick' if quick else ''}: {len(tasks)} tasks"]
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=".bench-", dir=out))
-    try:
+    with Staged(out) as stage:
         if by["pareto"]:
             rows = sorted(by["pareto"], key=lambda r: (r["case"], r["method"], r["eps_share"],
                                                       r["slices"]))
@@ -168,13 +157,6 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
         lines.append("\ntask seconds per part (sum over tasks): " + ", ".join(
             f"{p} {cpu[p]:.0f}" for p in parts))
         lines.append("\nreconstruction methods: one (shape-based interpolation of the slice "
-                     "regions, recon3d.field); nothing to compare")
+                     "regions, recon3d.surface.field); nothing to compare")
         (stage / "table.txt").write_text("\n".join(lines) + "\n")
-        for p in sorted(stage.iterdir()):
-            os.chmod(p, 0o644)
-            os.replace(p, out / p.name)
-        stage.rmdir()
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
-        raise
     return lines

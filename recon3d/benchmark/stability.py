@@ -33,6 +33,15 @@ import time
 import warnings
 
 import numpy as np
+import trimesh
+
+import meshes
+import recon3d
+import slicer
+from core2d import sense_slice
+from core2d.truth.metrics import slice_metrics
+from recon3d.benchmark.cases import workspace
+from recon3d.config import diagonal
 
 __all__ = ["NoisyContact", "stability_tasks", "run_factor", "breaking_points", "METHODS"]
 
@@ -91,10 +100,6 @@ def stability_tasks(quick: bool) -> list[dict]:
 
 def _sense(slc, eps, method, backend, sigma=0.0, max_motions=20000):
     """Sense one slice; a row fragment (crash caught and reported)."""
-    from recon3d.benchmark.cases import workspace
-    from core2d import sense_slice
-    from core2d.truth.metrics import slice_metrics
-
     t0 = time.perf_counter()
     try:
         model = slc.contact(backend)
@@ -115,8 +120,6 @@ def _sense(slc, eps, method, backend, sigma=0.0, max_motions=20000):
 
 def _run3d(mesh, slices, eps=None):
     """Whole pulling run (Embree); (F@1%, coverage, crashed, error)."""
-    import recon3d
-
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -136,9 +139,6 @@ def _methods(task, quick):
 
 
 def _mesh_for(task):
-    import meshes
-    import trimesh
-
     f, v = task["factor"], task["value"]
     if f == "resolution":
         return meshes.load("bowl", resolution=int(v))
@@ -166,8 +166,6 @@ def _mesh_for(task):
 
 
 def _slices(task, mesh, diag):
-    import slicer
-
     f, v = task["factor"], task["value"]
     if f == "plane offset":
         z = np.unique(np.round(mesh.vertices[:, 2], 9))
@@ -180,8 +178,6 @@ def _slices(task, mesh, diag):
 
 def run_factor(task: dict) -> list[dict]:
     """All methods at one (factor, value); one row per (method, slice)."""
-    from recon3d.benchmark.cases import diagonal
-
     quick, f, v = task["quick"], task["factor"], task["value"]
     mesh = _mesh_for(task)
     diag = diagonal(mesh)
@@ -191,8 +187,6 @@ def run_factor(task: dict) -> list[dict]:
     base = {"factor": f, "value": v, "eps": eps, "edge": edge, "fscore_1": np.nan}
     if f == "mesh defects":
         for backend in ("embree", "exact"):
-            import recon3d
-
             t0 = time.perf_counter()
             try:
                 with warnings.catch_warnings():

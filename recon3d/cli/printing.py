@@ -1,9 +1,22 @@
-"""The end-of-run summary printed by ``recon3d run`` (plain text lines)."""
+"""What the command line prints: one-line warnings and the end-of-run summary of ``recon3d run``."""
 from __future__ import annotations
 
-import numpy as np
+import sys
+from pathlib import Path
 
-__all__ = ["summary_lines", "format_seconds"]
+from recon3d.api import Result
+from recon3d.config import diagonal
+from recon3d.records import MeshRun, SliceRun
+
+__all__ = ["warn", "summary_lines", "format_seconds"]
+
+
+def warn(message: str) -> None:
+    """Print one warning line on stderr (``recon3d: warning: ...``).
+
+    >>> warn("a coarse eps")  # doctest: +SKIP
+    """
+    print(f"recon3d: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 def format_seconds(s: float | None) -> str:
@@ -25,14 +38,14 @@ def _num(x, fmt=".4f") -> str:
     return "n/a" if x is None else format(x, fmt)
 
 
-def _names(run, slices) -> str:
+def _names(run: MeshRun, slices: list[SliceRun]) -> str:
     shown = [f"{run.families[s.family].label}#{s.slice.index}" for s in slices[:12]]
     more = f" and {len(slices) - 12} more" if len(slices) > 12 else ""
     return ", ".join(shown) + more
 
 
-def summary_lines(result, files=()) -> list[str]:
-    """Lines of the summary of a :class:`recon3d.api.Result`."""
+def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
+    """Lines of the summary of a :class:`recon3d.Result`."""
     run, m = result.sensing, result.metrics
     t, surf, ev = m["total"], m["total"].get("surface"), m["surface_eval"]
     fams = ", ".join(f"{f.label} x{len(f.slices)}" for f in run.families)
@@ -42,7 +55,7 @@ def summary_lines(result, files=()) -> list[str]:
                  f"{_num(t.get('precision'))}  W3 soundness {_num(t.get('w3_soundness'))} "
                  f"({t.get('w3_count', 0)} lids)")
     if surf is not None:
-        diag = float(np.linalg.norm(np.ptp(result.mesh.bounds, axis=0)))
+        diag = diagonal(result.mesh)
         cd = surf["chamfer_l1"] / diag if surf["chamfer_l1"] is not None else None
         lines.append(f"  3D  F@1% {_num(surf['fscore']['1%'], '.3f')}  Chamfer-L1/diagonal "
                      f"{_num(cd, '.2e')}  reachable F@1% "

@@ -11,36 +11,45 @@ parameter values (a grid)::
     axis = "z"                  # or ["z", "x"] as one value: [["z", "x"]]
     backend = "embree"
 
-Keys of ``[params]``: ``axis``, ``slices``, ``eps``, ``eps_share``, ``tol``,
-``backend``, ``max_motions``, ``max_slices``, ``slice_tol``, ``probe_speed``,
-``motion_overhead`` (the keywords of :func:`recon3d.run`). Everything is
-checked before the first run: a bad manifest is one clear error.
+The keys of ``[params]`` are :func:`recon3d.config.batch_keys` (the
+keywords of :func:`recon3d.run` but ``jobs``, and ``eps_share``;
+:func:`recon3d.config.manifest_doc` names them). Everything is checked
+before the first run: a bad manifest is one clear error.
 
 Each job is :func:`run_job` (``recon3d.run`` with ``jobs=1``); its outputs
 go to ``DIR/runs/NNN_<mesh>/`` (``metrics.json``, ``sensing.json``,
 ``surface.ply``; ``recon3d run`` writes the pictures) and one row per job to
-``DIR/batch.csv``. Outputs are staged and moved into place at the end.
+``DIR/batch.csv`` (:func:`write_batch`, staged and moved into place at the end).
 """
 from __future__ import annotations
 
+import csv
 import itertools
 import re
+import time
 import tomllib
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+import meshes
+from recon3d.api import Result, execute, load_input
 from recon3d.checks import InputError
+from recon3d.config import BATCH_ONLY, RunConfig, batch_keys, diagonal, make_config, validate
+from recon3d.io.outputs import write_json
+from recon3d.io.ply import write_ply
+from recon3d.io.staged import Staged
 
-__all__ = ["Job", "read_manifest", "run_job", "job_row", "COLUMNS", "PARAMS"]
 
-PARAMS = ("axis", "slices", "eps", "eps_share", "tol", "backend", "max_motions", "max_slices",
-          "slice_tol", "probe_speed", "motion_overhead")
+__all__ = ["Job", "read_manifest", "run_job", "write_batch", "COLUMNS"]
 
 COLUMNS = ("job", "mesh", "axis", "slices", "eps", "backend", "sensed_slices", "coverage",
            "fscore_1%", "chamfer_l1_diag", "hd95_diag", "motions", "robot_time_s",
            "budget_hits", "seconds")
+
+_DEFAULT = RunConfig()
 
 
 @dataclass(frozen=True)
@@ -75,10 +84,6 @@ def read_manifest(path) -> list[Job]:
     InputError -- unreadable TOML, no meshes, an unknown key, a mesh that does
         not load, or a parameter set that ``recon3d run`` would reject.
     """
-    import meshes
-
-    from recon3d.api import load_input, make_config, validate
-
     path = Path(path)
     try:
         doc = tomllib.loads(path.read_text())
@@ -95,22 +100,24 @@ def read_manifest(path) -> list[Job]:
     params = doc.get("params", {})
     if not isinstance(params, dict):
         raise InputError("manifest: [params] must be a table")
-    bad = set(params) - set(PARAMS)
+    allowed = batch_keys()
+    bad = set(params) - set(allowed)
     if bad:
-        raise InputError(f"manifest: unknown parameters {sorted(bad)} (allowed: {', '.join(PARAMS)})")
-    if "eps" in params and "eps_share" in params:
-        raise InputError("manifest: give eps or eps_share, not both")
+        raise InputError(f"manifest: unknown parameters {sorted(bad)} (allowed: {', '.join(allowed)})")
+    for key, (target, _) in BATCH_ONLY.items():
+        if key in params and target in params:
+            raise InputError(f"manifest: give {target} or {key}, not both")
     keys = sorted(params)
     grid = [dict(zip(keys, combo)) for combo in itertools.product(*(_as_list(params[k]) for k in keys))]
     jobs = []
     for name in names:
         source = name if name in meshes.names() else str((path.parent / name).resolve())
         mesh, _, _ = load_input(source)
-        diag = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
+        diag = diagonal(mesh)
         for p in grid:
             kw = _resolved(p, diag)
             try:
-                validate(mesh, make_config(**kw), {k: f"params.{k}" for k in PARAMS})
+                validate(mesh, make_config(**kw), spelling="params")
             except (TypeError, ValueError) as exc:
                 raise InputError(f"manifest: {name} with {p}: {exc}") from None
             jobs.append(Job(len(jobs), source, dict(p)))
@@ -136,16 +143,11 @@ def run_job(job: Job) -> dict:
     dict with ``row`` (the batch.csv row), ``metrics`` and ``sensing`` (the JSON
     documents) and ``surface`` (vertices (v, 3), faces (f, 3), labels (f,)).
     """
-    import time
-    import warnings
-
-    from recon3d.api import execute, load_input, make_config
-
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mesh, name, notes = load_input(job.mesh)
-        diag = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
+        diag = diagonal(mesh)
         config = make_config(**_resolved(job.params, diag), jobs=1)
         res = execute(mesh, name, config, notes)
     surf = res.surface
@@ -155,16 +157,35 @@ def run_job(job: Job) -> dict:
                         np.asarray(surf.face_attributes["label"]))}
 
 
-def job_row(job: Job, res, diag: float, seconds: float) -> dict:
+def job_row(job: Job, res: Result, diag: float, seconds: float) -> dict:
     """The batch.csv row of a finished job (lengths over the diagonal, wall seconds)."""
     tot = res.metrics["total"]
     s = tot.get("surface") or {}
     axis = job.params.get("axis", "z")
     return {"job": job.index, "mesh": Path(job.mesh).name, "axis": str(axis),
-            "slices": job.params.get("slices", 8), "eps": res.sensing.eps,
-            "backend": job.params.get("backend", "embree"), "sensed_slices": len(res.slices),
+            "slices": job.params.get("slices", _DEFAULT.slices), "eps": res.sensing.eps,
+            "backend": job.params.get("backend", _DEFAULT.backend),
+            "sensed_slices": len(res.slices),
             "coverage": tot.get("coverage"), "fscore_1%": (s.get("fscore") or {}).get("1%"),
             "chamfer_l1_diag": None if s.get("chamfer_l1") is None else s["chamfer_l1"] / diag,
             "hd95_diag": None if s.get("hd95") is None else s["hd95"] / diag,
             "motions": tot.get("motions"), "robot_time_s": tot.get("robot_time_s"),
             "budget_hits": tot.get("budget_hits", 0), "seconds": seconds}
+
+
+def write_batch(out, jobs: list[Job], results: list[dict]) -> list[Path]:
+    """Write batch.csv and the per-job files into ``out``, all or nothing."""
+    with Staged(out) as stage:
+        runs = stage / "runs"
+        runs.mkdir()
+        for job, res in zip(jobs, results):
+            d = runs / job.name
+            d.mkdir()
+            for key in ("metrics", "sensing"):
+                write_json(d / f"{key}.json", res[key])
+            write_ply(d / "surface.ply", *res["surface"])
+        with open(stage / "batch.csv", "w", newline="") as fh:
+            w = csv.DictWriter(fh, COLUMNS)
+            w.writeheader()
+            w.writerows(r["row"] for r in results)
+    return [Path(out) / "batch.csv", Path(out) / "runs"]

@@ -12,7 +12,13 @@ returns exactly what the serial run returns (tested).
 """
 from __future__ import annotations
 
+import logging
 import sys
+from collections.abc import Callable
+
+from tqdm import tqdm
+
+from recon3d.config import default_jobs
 
 __all__ = ["run_tasks", "SERIAL"]
 
@@ -20,14 +26,10 @@ SERIAL = "serial"
 
 
 def _bar(total, desc, quiet):
-    if quiet:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, desc=desc, unit="task", file=sys.stderr)
+    return None if quiet else tqdm(total=total, desc=desc, unit="task", file=sys.stderr)
 
 
-def run_tasks(fn, items, scheduler: str | None = None, workers: int | None = None,
+def run_tasks(fn: Callable, items, scheduler: str | None = None, workers: int | None = None,
               desc: str = "tasks", quiet: bool = False) -> list:
     """``[fn(item) for item in items]``, on Dask unless ``scheduler == "serial"``.
 
@@ -61,11 +63,8 @@ def run_tasks(fn, items, scheduler: str | None = None, workers: int | None = Non
 
 
 def _on_dask(fn, items, scheduler, workers, bar) -> list:
-    import logging
-
+    # lazy: distributed takes seconds to load; --scheduler serial runs without it
     from distributed import Client, LocalCluster, as_completed
-
-    from recon3d.parallel import default_jobs
 
     cluster = None
     if scheduler is None:

@@ -4,22 +4,24 @@ Blocks, all in world coordinates:
 
 * ``ground_truth`` -- the mesh subdivided to the grid step, cell array
   ``coverage`` (0 outside the slab, 1 touched, 2 reachable but missed,
-  3 unreachable; :data:`recon3d.evaluate.COVERAGE_CLASSES`);
+  3 unreachable; :data:`recon3d.records.COVERAGE_CLASSES`);
 * ``surface`` -- the reconstruction, cell array ``label``
-  (:data:`recon3d.surface.LABELS`);
+  (:data:`recon3d.records.LABELS`);
 * ``curves`` -- the sensed slice curves as lines, cell arrays ``class``
-  (1 W1, 2 W2, 3 W3, 4 unknown), ``family`` and ``slice``.
+  (1 W1, 2 W2, 3 W3, 4 unknown: :data:`recon3d.records.CURVE_CLASSES`),
+  ``family`` and ``slice``.
 
-Plain data: drawing is in :mod:`recon3d.plot`.
+Plain data: drawing is in :mod:`recon3d.viz.plot`.
 """
 from __future__ import annotations
 
 import numpy as np
+import trimesh
 
-__all__ = ["CURVE_CLASSES", "curves_polydata", "scene_blocks", "read_scene"]
+from recon3d.records import SliceRun
+from recon3d.viz import libs
 
-CURVE_CLASSES = {1: "W1", 2: "W2", 3: "W3", 4: "unknown"}
-"""Codes of the ``class`` array of the curves block."""
+__all__ = ["curves_polydata", "scene_blocks", "read_scene"]
 
 
 def _lines(polylines):
@@ -31,10 +33,9 @@ def _lines(polylines):
     return pts, (np.concatenate(conn) if conn else np.zeros(0, dtype=np.int64))
 
 
-def curves_polydata(slice_runs):
+def curves_polydata(slice_runs: list[SliceRun]):
     """pyvista.PolyData of the sensed curves of ``slice_runs`` (see module doc)."""
-    import pyvista as pv
-
+    pv = libs.pyvista()
     polys, cls, fam, idx = [], [], [], []
     for s in slice_runs:
         r = s.result
@@ -55,30 +56,26 @@ def curves_polydata(slice_runs):
     return out
 
 
-def _polydata(mesh, name: str):
-    import pyvista as pv
-
+def _polydata(mesh: trimesh.Trimesh, name: str):
     if len(mesh.faces) == 0:
-        return pv.PolyData()
-    out = pv.PolyData.from_regular_faces(np.asarray(mesh.vertices, dtype=np.float64),
-                                         np.asarray(mesh.faces, dtype=np.int64))
+        return libs.pyvista().PolyData()
+    out = libs.polydata(mesh)
     out.cell_data[name] = np.asarray(mesh.face_attributes[name]).astype(np.int32)
     return out
 
 
-def scene_blocks(ground_truth, surface, slice_runs):
+def scene_blocks(ground_truth: trimesh.Trimesh, surface: trimesh.Trimesh,
+                 slice_runs: list[SliceRun]):
     """pyvista.MultiBlock with ``ground_truth``, ``surface`` and ``curves``.
 
     Parameters
     ----------
     ground_truth : trimesh.Trimesh with ``face_attributes['coverage']``
-        (:func:`recon3d.evaluate.coverage_mesh`).
+        (:func:`recon3d.score.evaluate.coverage_mesh`).
     surface : trimesh.Trimesh with ``face_attributes['label']``.
-    slice_runs : list of recon3d.pipeline.SliceRun
+    slice_runs : list of recon3d.records.SliceRun
     """
-    import pyvista as pv
-
-    blocks = pv.MultiBlock()
+    blocks = libs.pyvista().MultiBlock()
     blocks["ground_truth"] = _polydata(ground_truth, "coverage")
     blocks["surface"] = _polydata(surface, "label")
     blocks["curves"] = curves_polydata(slice_runs)
@@ -87,8 +84,7 @@ def scene_blocks(ground_truth, surface, slice_runs):
 
 def read_scene(path):
     """Read a ``scene.vtm`` back; ValueError (one line) when it is not one of ours."""
-    import pyvista as pv
-
+    pv = libs.pyvista()
     blocks = pv.read(str(path))
     names = set(blocks.keys()) if isinstance(blocks, pv.MultiBlock) else set()
     if not {"ground_truth", "surface", "curves"} <= names:

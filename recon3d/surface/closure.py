@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
@@ -59,8 +60,8 @@ class SliceRegion:
     pieces : tuple of Piece -- the sensed pieces (ends snapped) and the bridges.
     """
 
-    geometry: object
-    pieces: tuple
+    geometry: shapely.Polygon | shapely.MultiPolygon
+    pieces: tuple[Piece, ...]
 
     @property
     def area(self) -> float:
@@ -90,8 +91,6 @@ def _snap(pieces, snap) -> tuple[list[Piece], np.ndarray, np.ndarray]:
         return [], np.zeros(0, dtype=np.int64), np.zeros((0, 2))
     pairs = cKDTree(ends).query_pairs(snap, output_type="ndarray")
     n = len(ends)
-    from scipy.sparse import coo_matrix
-
     adj = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
     _, node = connected_components(adj, directed=False)
     counts = np.bincount(node)

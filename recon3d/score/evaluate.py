@@ -30,22 +30,21 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import trimesh
 from scipy.spatial import cKDTree
 
-__all__ = ["FSCORE_SHARES", "SAMPLES", "COVERAGE_CLASSES", "Domain", "ContourCloud",
-           "contour_cloud", "GroundTruthSamples", "coverage_mesh",
-           "surface_metrics", "distances", "to_polydata"]
+from recon3d.config import diagonal
+from recon3d.records import Family
+from recon3d.viz import libs
+
+__all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",
+           "GroundTruthSamples", "coverage_mesh", "surface_metrics", "distances"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
 """F-score thresholds as shares of the ground truth's bounding-box diagonal."""
 
 SAMPLES = 50_000
 """Surface samples per side (ground truth, reconstruction)."""
-
-COVERAGE_CLASSES = {0: "outside the slab", 1: "touched", 2: "reachable, missed",
-                    3: "unreachable"}
-"""Ground-truth coverage classes (``coverage_mesh``)."""
-
 
 @dataclass(frozen=True)
 class Domain:
@@ -59,7 +58,7 @@ class Domain:
     hi: np.ndarray
 
     @classmethod
-    def of(cls, solids) -> "Domain":
+    def of(cls, solids) -> Domain:
         return cls(np.array([s.normal for s in solids]).reshape(-1, 3),
                    np.array([s.slab[0] for s in solids]), np.array([s.slab[1] for s in solids]))
 
@@ -111,10 +110,10 @@ class ContourCloud:
         return cls
 
 
-def contour_cloud(families) -> ContourCloud:
-    """Stack the :class:`recon3d.sensing.ContourTruth` of every slice in 3D.
+def contour_cloud(families: list[Family]) -> ContourCloud:
+    """Stack the :class:`recon3d.records.ContourTruth` of every slice in 3D.
 
-    families : list of recon3d.pipeline.Family
+    families : list of recon3d.records.Family
     """
     pts, reach, cov, fam = [np.zeros((0, 3))], [np.zeros(0, bool)], [np.zeros(0, bool)], []
     normals, lo, hi = [], [], []
@@ -135,28 +134,17 @@ def contour_cloud(families) -> ContourCloud:
                         fam, slabs)
 
 
-def to_polydata(mesh):
-    """trimesh -> pyvista.PolyData (geometry only)."""
-    import pyvista as pv
-
-    return pv.PolyData.from_regular_faces(np.asarray(mesh.vertices, dtype=np.float64),
-                                          np.asarray(mesh.faces, dtype=np.int64))
-
-
-def distances(points, mesh) -> np.ndarray:
-    """(n,) float: exact distance from (n, 3) points to a triangle mesh."""
-    import pyvista as pv
-
+def distances(points, mesh: trimesh.Trimesh) -> np.ndarray:
+    """(n,) float: exact distance from (n, 3) points to a triangle mesh (VTK)."""
     if len(points) == 0:
         return np.zeros(0)
+    pv = libs.pyvista()  # vtkImplicitPolyDataDistance
     cloud = pv.PolyData(np.asarray(points, dtype=np.float64))
-    res = cloud.compute_implicit_distance(to_polydata(mesh))
+    res = cloud.compute_implicit_distance(libs.polydata(mesh))
     return np.abs(np.asarray(res["implicit_distance"], dtype=np.float64))
 
 
 def _sample(mesh, count: int, seed: int) -> np.ndarray:
-    import trimesh
-
     if len(mesh.faces) == 0 or mesh.area <= 0:
         return np.zeros((0, 3))
     pts, _ = trimesh.sample.sample_surface(mesh, count, seed=seed)
@@ -188,29 +176,27 @@ class GroundTruthSamples:
     """
 
     def __init__(self, mesh, domain: Domain, count: int = SAMPLES, seed: int = 0):
-        self.diagonal = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
+        self.diagonal = diagonal(mesh)
         pts = _sample(mesh, count, seed)
         self.points = pts[domain.contains(pts, pad=1e-9 * self.diagonal)]
         self.drawn = len(pts)
         self.mesh = mesh
 
 
-def coverage_mesh(mesh, cloud: ContourCloud, max_edge: float):
+def coverage_mesh(mesh: trimesh.Trimesh, cloud: ContourCloud, max_edge: float) -> trimesh.Trimesh:
     """Ground truth subdivided to ``max_edge`` with a per-face ``coverage`` class.
 
-    Classes (:data:`COVERAGE_CLASSES`): 0 outside every slab, 1 touched,
-    2 reachable but missed, 3 unreachable (see module doc). Returns a
-    trimesh with ``face_attributes['coverage']`` (f,) int8.
+    Classes (:data:`recon3d.records.COVERAGE_CLASSES`): 0 outside every slab,
+    1 touched, 2 reachable but missed, 3 unreachable (see module doc). Returns
+    a trimesh with ``face_attributes['coverage']`` (f,) int8.
     """
-    import trimesh
-
     v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
     out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
     return out
 
 
-def surface_metrics(surface, gt: GroundTruthSamples, cloud: ContourCloud,
+def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: ContourCloud,
                     count: int = SAMPLES, seed: int = 1) -> tuple[dict, dict]:
     """Metrics of a labelled surface (module doc).
 

@@ -1,9 +1,11 @@
-"""Sense one slice and score it: the unit of work of a run (one process each).
+"""Sense one slice and score it: the unit of work of a run (internal).
 
-A worker rebuilds the slices of every family from the mesh (Embree scenes
-do not pickle), senses the slices it is given with :func:`core2d.sense_slice`
-and scores them with :func:`core2d.truth.metrics.slice_metrics`. The same
-code runs in-process for ``jobs=1``, so results do not depend on ``jobs``.
+A :class:`WorkerState` holds the slices of every family -- the parent's own
+(``jobs=1``, or inherited by forked workers) or rebuilt from the mesh arrays
+in a spawned worker (Embree scenes do not pickle) -- senses the slices it is
+given with :func:`core2d.sense_slice` and scores them with
+:func:`core2d.truth.metrics.slice_metrics`. The same code runs in every
+process, so results do not depend on ``jobs``.
 
 Slices of an open mesh whose reference section is not made of closed loops
 alone (no loop, or open chains beside the loops) have no reference: every
@@ -17,14 +19,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
+import trimesh
 
 import core2d
 import slicer
 from core2d.truth.metrics import slice_metrics
 from core2d.truth.reachability import reachable_samples
+from recon3d.records import ContourTruth, SliceRun
 
-__all__ = ["SenseSettings", "ContourTruth", "SliceOutcome", "WorkerState", "family_slices",
-           "no_reference_metrics"]
+__all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics"]
 
 
 @dataclass(frozen=True)
@@ -34,7 +37,7 @@ class SenseSettings:
     axes : tuple of (3,) float -- one unit normal per family.
     slices : int -- planes per family.
     eps, tol : float -- the paper's eps and the contact resolution.
-    backend : str -- 'embree' or 'exact'.
+    backend : str -- one of ``slicer.BACKENDS`` ('embree', 'exact', 'trimesh').
     max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
     """
 
@@ -55,39 +58,6 @@ class SenseSettings:
     def spacing(self) -> float:
         """Reference contour sampling step: eps / 4."""
         return 0.25 * self.eps
-
-
-@dataclass
-class ContourTruth:
-    """Reference contour samples of one slice, for the 3D evaluation.
-
-    points : (m, 2) float -- sample points in the slice frame.
-    lengths : (m,) float -- contour length each sample stands for.
-    reachable : (m,) bool -- exact 2D reachability.
-    covered : (m,) bool -- reachable and within ``metric_tol`` of W1 u W2.
-    """
-
-    points: np.ndarray
-    lengths: np.ndarray
-    reachable: np.ndarray
-    covered: np.ndarray
-
-    @classmethod
-    def empty(cls) -> "ContourTruth":
-        z = np.zeros(0, dtype=bool)
-        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy())
-
-
-@dataclass
-class SliceOutcome:
-    """What a worker sends back for one slice (plain, picklable data)."""
-
-    family: int
-    index: int
-    result: object
-    metrics: dict
-    workspace: tuple
-    truth: ContourTruth
 
 
 def family_slices(mesh, axis, count):
@@ -127,39 +97,45 @@ def _covered(points, result, tol) -> np.ndarray:
 
 
 class WorkerState:
-    """The slices of every family of one mesh, rebuilt in the process that senses them."""
+    """The slices of every family of one mesh, in the process that senses them.
 
-    def __init__(self, vertices, faces, settings: SenseSettings):
-        import trimesh
+    Parameters
+    ----------
+    settings : SenseSettings
+    families : list of list of slicer.Slice -- the parent's slices (not copied).
+    """
 
-        self.mesh = trimesh.Trimesh(vertices, faces, process=False)
+    def __init__(self, settings: SenseSettings, families: list):
         self.settings = settings
-        self._families: dict[int, list] = {}
+        self.families = families
 
-    def slices(self, family: int) -> list:
-        if family not in self._families:
-            axis = self.settings.axes[family]
-            self._families[family] = family_slices(self.mesh, axis, self.settings.slices)
-        return self._families[family]
+    @classmethod
+    def rebuild(cls, vertices, faces, settings: SenseSettings) -> WorkerState:
+        """Cut the families again from (v, 3) vertices and (f, 3) faces (a spawned worker)."""
+        mesh = trimesh.Trimesh(vertices, faces, process=False)
+        return cls(settings, [family_slices(mesh, axis, settings.slices)
+                              for axis in settings.axes])
 
-    def sense(self, family: int, index: int, eps: float | None = None) -> SliceOutcome:
+    def sense(self, family: int, index: int, eps: float | None = None) -> SliceRun:
         """Sense slice ``index`` of ``family`` and score it against its reference
-        (at ``eps`` instead of the run's, tol scaled alike, when given)."""
+        (at ``eps`` instead of the run's, tol scaled alike, when given).
+
+        The returned SliceRun has ``slice=None`` (the parent holds the slices)."""
         st = self.settings
         if eps is not None:
             st = replace(st, eps=float(eps), tol=st.tol * float(eps) / st.eps)
-        cut = self.slices(family)[index]
+        cut = self.families[family][index]
         if cut.is_empty:
             result = core2d.SliceResult()
-            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
-                                (np.zeros(2), 0.0), ContourTruth.empty())
+            return SliceRun(None, family, index, result, no_reference_metrics(result, st),
+                            (np.zeros(2), 0.0), ContourTruth.empty())
         center, radius = cut.bounding_circle()
         workspace = (np.asarray(center, float), float(radius) + st.eps)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
                                     max_motions=st.max_motions, bootstrap_count=st.bootstrap)
         if not cut.loops or cut.open_chains:
-            return SliceOutcome(family, index, result, no_reference_metrics(result, st),
-                                workspace, ContourTruth.empty())
+            return SliceRun(None, family, index, result, no_reference_metrics(result, st),
+                            workspace, ContourTruth.empty())
         loops = [np.asarray(lp) for lp in cut.loops]
         samples = reachable_samples(loops, st.spacing)
         metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
@@ -167,4 +143,4 @@ class WorkerState:
         samp, reach = samples
         covered = reach & _covered(samp.points, result, st.metric_tol)
         truth = ContourTruth(samp.points, samp.lengths, reach, covered)
-        return SliceOutcome(family, index, result, metrics, workspace, truth)
+        return SliceRun(None, family, index, result, metrics, workspace, truth)

@@ -10,6 +10,11 @@ from __future__ import annotations
 
 import os
 
+import numpy as np
+
+from recon3d.records import COVERAGE_CLASSES, CURVE_CLASSES, LABELS
+from recon3d.viz import libs
+
 __all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "VIEW", "prepare_offscreen",
            "coverage_plotter", "save_png", "has_display"]
 
@@ -33,13 +38,10 @@ def prepare_offscreen() -> None:
 
 def _categorical(plotter, mesh, array, colors, **kwargs):
     """Add ``mesh`` with each cell painted the colour of its integer code in ``array``."""
-    import numpy as np
-    from matplotlib.colors import to_rgb
-
     codes = np.asarray(mesh.cell_data[array])
     table = np.zeros((max(colors) + 1, 3))
     for code, color in colors.items():
-        table[code] = to_rgb(color)
+        table[code] = libs.to_rgb(color)
     rgb = (255 * table[np.clip(codes, 0, len(table) - 1)]).astype(np.uint8)
     plotter.add_mesh(mesh, scalars=rgb, rgb=True, preference="cell", **kwargs)
 
@@ -56,12 +58,9 @@ def _legend(plotter, entries, size):
 
 def _swatch(color):
     """A filled square in ``color`` as a legend symbol (vtkPolyData with colours)."""
-    import numpy as np
-    import pyvista as pv
-    from matplotlib.colors import to_rgb
-
+    pv = libs.pyvista()
     sq = pv.Rectangle([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).triangulate()
-    sq.cell_data["rgb"] = np.tile((255 * np.array(to_rgb(color))).astype(np.uint8),
+    sq.cell_data["rgb"] = np.tile((255 * np.array(libs.to_rgb(color))).astype(np.uint8),
                                   (sq.n_cells, 1))
     return sq
 
@@ -72,18 +71,11 @@ VIEW = (0.45, 0.6, 1.0)
 
 def _split(mesh, array, codes):
     """(cells whose ``array`` is in ``codes``, the other cells), as two meshes."""
-    import numpy as np
-
     keep = np.isin(mesh.cell_data[array], list(codes))
     return mesh.extract_cells(np.flatnonzero(keep)), mesh.extract_cells(np.flatnonzero(~keep))
 
 
 def _panel_a(p, surf, gt, curves, title):
-    import numpy as np
-
-    from recon3d.scene import CURVE_CLASSES
-    from recon3d.surface import LABELS
-
     p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
     entries = []
     if surf.n_cells:
@@ -105,10 +97,6 @@ def _panel_a(p, surf, gt, curves, title):
 
 
 def _panel_b(p, gt):
-    import numpy as np
-
-    from recon3d.evaluate import COVERAGE_CLASSES
-
     p.add_text("(b) ground truth coverage", font_size=14, color="black")
     if not gt.n_cells:
         return
@@ -131,13 +119,12 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
 
     Parameters
     ----------
-    blocks : pyvista.MultiBlock -- :func:`recon3d.scene.scene_blocks` or a read ``scene.vtm``.
+    blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks` or a read ``scene.vtm``.
     title : str -- shown above panel (a).
     off_screen : bool
     window_size : (2,) int
     """
-    import pyvista as pv
-
+    pv = libs.pyvista()
     gt, surf, curves = blocks["ground_truth"], blocks["surface"], blocks["curves"]
     p = pv.Plotter(shape=(1, 2), off_screen=off_screen, window_size=list(window_size),
                    border=False)
@@ -155,8 +142,6 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
 
 def _pan_down(camera, share: float) -> None:
     """Move the picture down by ``share`` of the view height (room for the legends)."""
-    import numpy as np
-
     up = np.asarray(camera.up, dtype=float)
     pos, focal = np.asarray(camera.position), np.asarray(camera.focal_point)
     height = 2.0 * np.linalg.norm(pos - focal) * np.tan(np.radians(camera.view_angle) / 2)

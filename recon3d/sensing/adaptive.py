@@ -10,7 +10,7 @@ subset of the uniform one and spans the same slab):
    asks for (step 2), so a scene with narrow features pays one coarse pass,
    not one per slice.
 2. **Adapt eps to the feature size the slice shows**: the sensed region of a
-   slice (:func:`recon3d.closure.slice_region`) is opened and closed with
+   slice (:func:`recon3d.surface.closure.slice_region`) is opened and closed with
    discs of dyadic widths w; the smallest w for which the boundary moves by
    more than w / 2 (a part or a pocket narrower than w, deeper than w / 2) is
    the slice's feature width, and a slice whose feature width is at most
@@ -31,16 +31,22 @@ Everything is decided from the sensed curves (the robot's own data), never
 from the mesh. The cost of the coarse passes that were sensed again is not
 lost: it is reported in ``MeshRun.adaptive`` (and ``metrics.json`` ->
 ``adaptive``) and counted in the robot time there.
+
+:func:`sense_adaptive` decides which slices to sense at which eps; the
+sensing itself and the assembly of the run are
+:func:`recon3d.sensing.mesh.sense_mesh`'s, as for a uniform run.
 """
 from __future__ import annotations
 
-import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from recon3d.closure import slice_region
+from recon3d.config import COARSE
+from recon3d.records import SliceRun, robot_time
+from recon3d.surface.closure import slice_region
 
 __all__ = ["AdaptivePlan", "region_difference", "feature_width", "sense_adaptive",
            "refine_pairs"]
@@ -64,7 +70,7 @@ class AdaptivePlan:
 
     @property
     def coarse(self) -> float:
-        return 2.0 * self.eps
+        return COARSE * self.eps
 
     @property
     def fine(self) -> float:
@@ -142,47 +148,41 @@ def refine_pairs(indices, regions, tol) -> list:
     return out
 
 
-def _region(outcome, tol):
-    r = outcome.result
+def _region(srun: SliceRun, tol: float):
+    r = srun.result
     return slice_region(r.w1, r.w2, r.w3, r.unknown, 2.0 * tol).geometry
 
 
-def sense_adaptive(mesh, name, config, progress=None):
-    """Sense ``mesh`` with adaptive slicing; a :class:`recon3d.pipeline.MeshRun`.
+def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], families: int,
+                   tol_share: float, probe_speed: float, motion_overhead: float):
+    """Choose, round by round, which slices to sense at which eps (module doc).
 
-    ``config.max_slices``, ``config.slice_tol`` (share of the diagonal) and
-    ``config.eps`` (the uniform run's eps) set the :class:`AdaptivePlan`.
+    Parameters
+    ----------
+    plan : AdaptivePlan
+    sense : callable(list of (family, index, eps)) -> list of SliceRun, in task order.
+    families : int -- number of slice families.
+    tol_share : float -- contact resolution as a share of each slice's eps.
+    probe_speed, motion_overhead : float -- robot time of the passes sensed again.
+
+    Returns
+    -------
+    got : list of dict index -> (SliceRun, eps) -- per family, the slices kept.
+    eps, tol : float -- the finest eps sensed and its contact resolution.
+    info : dict -- the ``adaptive`` block of metrics.json.
     """
-    from recon3d.parallel import default_jobs, sense_all
-    from recon3d.pipeline import Family, MeshRun, SliceRun, default_eps, robot_time
-    from recon3d.sensing import SenseSettings, family_slices
-    from slicer import parse_axis
-
-    t0 = time.perf_counter()
-    diag = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)))
-    eps = float(config.eps) if config.eps is not None else default_eps(mesh)
-    tol_share = (float(config.tol) / eps) if config.tol is not None else 1 / 20
-    n = int(config.max_slices)
-    plan = AdaptivePlan(n, 3 if n < 16 else 5, float(config.slice_tol) * diag, eps)
-    normals = tuple(parse_axis(a) for a in config.axes)
-    cuts = [family_slices(mesh, nrm, n) for nrm in normals]
-    radius = max((s.bounding_circle()[1] for fam in cuts for s in fam if not s.is_empty),
-                 default=1.0)
-    jobs = default_jobs() if config.jobs is None else int(config.jobs)
-    settings = SenseSettings(normals, n, plan.coarse, tol_share * plan.coarse, config.backend,
-                             config.max_motions, config.bootstrap)
-    got = [dict() for _ in normals]  # family -> index -> (outcome, eps)
-    regions = [dict() for _ in normals]
+    n = plan.max_slices
+    got = [dict() for _ in range(families)]  # family -> index -> (SliceRun, eps)
+    regions = [dict() for _ in range(families)]
     discarded = {"motions": 0, "joint_path": 0.0, "robot_time_s": 0.0, "slices": 0}
 
-    def sense(tasks):
-        for out, (f, i, e) in zip(sense_all(mesh, settings, tasks, jobs, progress), tasks):
+    def run(tasks):
+        for out, (f, i, e) in zip(sense(tasks), tasks):
             if i in got[f]:  # sensed again at a finer eps: the coarse pass still cost
                 st = got[f][i][0].result.stats.as_dict()
                 discarded["motions"] += st["motions"]
                 discarded["joint_path"] += st["joint_path"]
-                discarded["robot_time_s"] += robot_time(st, config.probe_speed,
-                                                        config.motion_overhead)
+                discarded["robot_time_s"] += robot_time(st, probe_speed, motion_overhead)
                 discarded["slices"] += 1
             got[f][i] = (out, e)
             regions[f][i] = _region(out, tol_share * e)
@@ -190,19 +190,19 @@ def sense_adaptive(mesh, name, config, progress=None):
     def finer(fi):  # sensed slices whose feature width asks for a finer eps than they got
         return [(f, i, e) for f, i in fi if (e := _eps_for(regions[f][i], plan)) < got[f][i][1]]
 
-    fams = range(len(normals))
+    fams = range(families)
     start = sorted(set(np.round(np.linspace(0, n - 1, plan.initial)).astype(int).tolist()))
     mid = start[len(start) // 2]
-    sense([(f, mid, plan.coarse) for f in fams])  # one probe slice per family first
+    run([(f, mid, plan.coarse) for f in fams])  # one probe slice per family first
     first = {f: min(_eps_for(regions[f][mid], plan), plan.coarse) for f in fams}
-    sense([(f, mid, first[f]) for f in fams if first[f] < plan.coarse]
-          + [(f, i, first[f]) for f in fams for i in start if i != mid])
+    run([(f, mid, first[f]) for f in fams if first[f] < plan.coarse]
+        + [(f, i, first[f]) for f in fams for i in start if i != mid])
     new = [(f, i) for f in fams for i in start if i != mid]
     rounds = 1
     while True:
         again = finer(new)  # a feature the neighbours did not show: sense it again, finer
         if again:
-            sense(again)
+            run(again)
         tasks = []
         for f in fams:
             idx = sorted(got[f])
@@ -213,27 +213,12 @@ def sense_adaptive(mesh, name, config, progress=None):
         if not tasks:
             break
         rounds += 1
-        sense(tasks)
+        run(tasks)
         new = [(f, m) for f, m, _ in tasks]
-    run = MeshRun(name, mesh, config, plan.fine, tol_share * plan.fine,
-                  probe_length=4.0 * (radius + plan.coarse), jobs=jobs,
-                  families=[Family(nrm) for nrm in normals])
-    used = []
-    for f in range(len(normals)):
-        for i in sorted(got[f]):
-            out, e = got[f][i]
-            out.metrics["robot_time_s"] = robot_time(out.result.stats.as_dict(),
-                                                     config.probe_speed, config.motion_overhead)
-            run.families[f].slices.append(SliceRun(cuts[f][i], f, out.result, out.metrics,
-                                                   out.workspace, out.truth))
-            used.append(e)
-    run.eps = min(used)
-    run.tol = tol_share * run.eps
-    run.adaptive = {"max_slices": n, "initial": plan.initial, "tol": plan.tol,
-                    "rounds": rounds, "slices": [len(g) for g in got],
-                    "eps": {"coarse": plan.coarse, "fine": plan.fine,
-                            "per_slice": [e for g in got for _, e in
-                                          (g[i] for i in sorted(g))]},
-                    "resensed": discarded}
-    run.seconds = time.perf_counter() - t0
-    return run
+    used = [e for g in got for _, e in (g[i] for i in sorted(g))]
+    eps = min(used)
+    info = {"max_slices": n, "initial": plan.initial, "tol": plan.tol,
+            "rounds": rounds, "slices": [len(g) for g in got],
+            "eps": {"coarse": plan.coarse, "fine": plan.fine, "per_slice": used},
+            "resensed": discarded}
+    return got, eps, tol_share * eps, info

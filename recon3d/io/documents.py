@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from recon3d.records import MeshRun, SliceRun
+
 __all__ = ["sensing_document", "metrics_document", "without_timing", "ROBOT_RULE"]
 
 ROBOT_RULE = "robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
@@ -44,7 +46,7 @@ def _area_logs(cut, records) -> list:
              "note": rec.note} for k, rec in enumerate(records)]
 
 
-def _slice_document(srun) -> dict:
+def _slice_document(srun: SliceRun) -> dict:
     cut, res = srun.slice, srun.result
     plane = cut.plane
     segments = [{"class": "W1", "points": _world(cut, w)} for w in res.w1]
@@ -67,13 +69,13 @@ def _slice_document(srun) -> dict:
     }
 
 
-def _families(run) -> list:
+def _families(run: MeshRun) -> list:
     return [{"axis": fam.label, "normal": np.asarray(fam.normal, float).tolist(),
              "slices": len(fam.slices)} for fam in run.families]
 
 
-def sensing_document(run) -> dict:
-    """The ``sensing.json`` object of a :class:`recon3d.pipeline.MeshRun`."""
+def sensing_document(run: MeshRun) -> dict:
+    """The ``sensing.json`` object of a :class:`recon3d.records.MeshRun`."""
     return {
         "mesh": run.name,
         "eps": float(run.eps),
@@ -85,7 +87,7 @@ def sensing_document(run) -> dict:
     }
 
 
-def _slice_metrics(srun, run) -> dict:
+def _slice_metrics(srun: SliceRun, run: MeshRun) -> dict:
     out = {"index": int(srun.slice.plane.index), "family": int(srun.family),
            "axis": run.families[srun.family].label, "reference": srun.has_reference,
            "outer_loops": srun.outer_loops,
@@ -95,19 +97,21 @@ def _slice_metrics(srun, run) -> dict:
     return out
 
 
-def metrics_document(run, surface: dict | None, surface_eval: dict) -> dict:
+def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> dict:
     """Per-slice 2D metrics, their totals, the 3D ``total.surface`` block and robot time.
 
     Parameters
     ----------
-    run : recon3d.pipeline.MeshRun
-    surface : dict or None -- from :func:`recon3d.reconstruct.score`.
+    run : recon3d.records.MeshRun
+    surface : dict or None -- from :func:`recon3d.score.score`.
     surface_eval : dict -- its explanation (domain, tau, samples, family gains).
+
+    With ``--slices auto`` the document ends with ``adaptive`` (``run.adaptive``).
     """
     cfg = run.config
     total = dict(run.totals)
     total["surface"] = surface
-    return {
+    doc = {
         "mesh": run.name,
         "eps": float(run.eps),
         "tol": float(run.tol),
@@ -120,3 +124,6 @@ def metrics_document(run, surface: dict | None, surface_eval: dict) -> dict:
         "surface_eval": surface_eval,
         "slices": [_slice_metrics(s, run) for s in run.slices],
     }
+    if run.adaptive is not None:
+        doc["adaptive"] = run.adaptive
+    return doc

@@ -1,6 +1,6 @@
 """Watertight labelled surface from the slice regions of one or more families.
 
-Route: per family, the field of :mod:`recon3d.field` is contoured at 0 with
+Route: per family, the field of :mod:`recon3d.surface.field` is contoured at 0 with
 VTK flying edges (positive inside) and moved to world coordinates; the
 level set extends one layer beyond the first and last slice.
 ``manifold3d`` checks it and makes the solid exact at the slab ends:
@@ -20,7 +20,7 @@ free -- the space-carving rule of visual hulls: each family's solid holds
 what it could not see (holes filled, W3 lids over undercuts) -- and each
 family adds the part of the object only its slab reaches.
 
-Face labels (``LABELS``): a face with a vertex on a slice plane takes the
+Face labels (:data:`recon3d.records.LABELS`): a face with a vertex on a slice plane takes the
 kind of the nearest sensed piece of that slice (W1 -> 1, W2 -> 2, W3 -> 3;
 unknown chords and bridges -> 4); other faces of the level set are
 interpolated between slices (4); faces on a plane that bounds a slab are
@@ -31,19 +31,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import manifold3d
 import numpy as np
+import trimesh
+from scipy.spatial import cKDTree
 
-from recon3d.closure import KIND_LABEL, sample_pieces
-from recon3d.field import family_grid, family_volume
+import slicer
+from recon3d.surface.closure import KIND_LABEL, SliceRegion, sample_pieces
+from recon3d.surface.field import family_grid, family_volume
+from recon3d.viz import libs
 
-__all__ = ["LABELS", "FamilySolid", "family_solid", "fuse", "empty_surface"]
+__all__ = ["FamilySolid", "family_solid", "fuse", "empty_surface"]
 
 #: margin of the box the slabs are cut from, times the largest extent
 _BOX_MARGIN = 0.05
-
-LABELS = {1: "W1 traced", 2: "W2 approximated", 3: "W3 lid", 4: "between slices", 5: "cap"}
-"""Surface face label codes and their names."""
-
 
 @dataclass(frozen=True)
 class FamilySolid:
@@ -57,7 +58,7 @@ class FamilySolid:
     overshoot : float -- how far beyond the slab ``E_f`` is cut (half a layer).
     """
 
-    manifold: object
+    manifold: manifold3d.Manifold
     original_id: int
     labels: np.ndarray
     normal: np.ndarray
@@ -67,8 +68,6 @@ class FamilySolid:
 
 def _piece_trees(regions, step):
     """Per slice: a KD-tree over the pieces sampled every step / 4, and their labels."""
-    from scipy.spatial import cKDTree
-
     out = []
     for reg in regions:
         pts, owner = sample_pieces(reg.pieces, step / 4)
@@ -105,22 +104,21 @@ def _face_labels(points, faces, grid, regions) -> np.ndarray:
     return labels
 
 
-def family_solid(regions, planes, step: float) -> FamilySolid | None:
+def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
+                 step: float) -> FamilySolid | None:
     """Level set of one family's field (see module doc).
 
     Parameters
     ----------
     regions : list of SliceRegion -- one per plane.
     planes : list of slicer.SlicePlane -- same family (same frame), >= 2.
-    step : float -- grid step (see :func:`recon3d.field.grid_step`).
+    step : float -- grid step (see :func:`recon3d.surface.field.grid_step`).
 
     Returns
     -------
     FamilySolid, or None when nothing was sensed.
     """
-    import manifold3d
-    import pyvista as pv
-
+    pv = libs.pyvista()  # VTK's flying edges contours the field
     order = np.argsort([p.offset for p in planes], kind="stable")
     planes = [planes[i] for i in order]
     regions = [regions[i] for i in order]
@@ -155,19 +153,15 @@ def family_solid(regions, planes, step: float) -> FamilySolid | None:
     return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])), delta)
 
 
-def empty_surface():
+def empty_surface() -> trimesh.Trimesh:
     """A trimesh without faces, with an empty ``label`` face attribute."""
-    import trimesh
-
     mesh = trimesh.Trimesh(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), process=False)
     mesh.face_attributes["label"] = np.zeros(0, dtype=np.int32)
     return mesh
 
 
-def _box(solids, bounds, margin: float = _BOX_MARGIN):
+def _box(solids, bounds, margin: float = _BOX_MARGIN) -> manifold3d.Manifold:
     """A box around the level sets and ``bounds`` ((2, 3) float), with a margin."""
-    import manifold3d
-
     boxes = [np.reshape(s.manifold.bounding_box(), (2, 3)) for s in solids]
     if bounds is not None:
         boxes.append(np.asarray(bounds, dtype=np.float64).reshape(2, 3))
@@ -177,7 +171,7 @@ def _box(solids, bounds, margin: float = _BOX_MARGIN):
     return manifold3d.Manifold.cube((hi - lo) + 2 * pad).translate(lo - pad)
 
 
-def fuse(solids, bounds=None) -> object:
+def fuse(solids: list[FamilySolid | None], bounds=None) -> trimesh.Trimesh:
     """The surface of ``S = union of slabs - union of E_f`` (module doc).
 
     Parameters
@@ -191,9 +185,6 @@ def fuse(solids, bounds=None) -> object:
     trimesh.Trimesh -- watertight, float64 vertices,
     ``face_attributes['label']`` (f,) int32; empty when nothing remains.
     """
-    import manifold3d
-    import trimesh
-
     solids = [s for s in solids if s is not None]
     if not solids:
         return empty_surface()

@@ -1,6 +1,6 @@
 """Signed distance field of one slice family (shape-based interpolation).
 
-Per slice, the filled region of :mod:`recon3d.closure` gives a 2D signed
+Per slice, the filled region of :mod:`recon3d.surface.closure` gives a 2D signed
 distance on a regular grid of the family's frame (positive inside, the
 convention of ``manifold3d.Manifold.level_set``), truncated at +-T with T
 the largest gap between neighbouring slices (and, between two slices, at

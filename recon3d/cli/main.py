@@ -1,0 +1,93 @@
+"""The parser and ``main`` (subcommands: ``scenes`` here, the others one module each):
+one line per error (exit status 2), one line per warning.
+
+Every user error -- an :class:`recon3d.InputError` from the checks or an
+argparse error -- ends with one line on stderr and exit status 2; no
+traceback. Python warnings print as one line (``recon3d: warning: ...``),
+never with a line of source code.
+"""
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+import warnings
+
+import meshes
+from recon3d.checks import InputError
+from recon3d.cli import batch, bench, run, show
+from recon3d.cli.printing import warn
+
+__all__ = ["main", "build_parser"]
+
+_NEGATIVE_AXIS = re.compile(r"^-[^-]")
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (InputError) instead of usage + error lines."""
+
+    def error(self, message):
+        raise InputError(f"{self.prog}: {message} (see '{self.prog} --help')")
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    warn(message)
+
+
+def _cmd_scenes(args: argparse.Namespace) -> int:
+    for name in meshes.names():
+        print(f"{name}\t{meshes.describe(name)}")
+    return 0
+
+
+def _description(module) -> str | None:
+    """A subcommand's description: the second paragraph of its module doc (None under -OO)."""
+    parts = (module.__doc__ or "").split("\n\n")
+    return " ".join(parts[1].split()) if len(parts) > 1 else None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="recon3d",
+        description="Slice-based pulling-motion tactile sensing of 3D meshes "
+        "(Kaneko & Tsuji, WAFR 2000, extended to 3D).",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    p = sub.add_parser("scenes", help="list built-in scenes as NAME<TAB>description")
+    p.set_defaults(func=_cmd_scenes)
+    for name, cmd in (("run", run), ("batch", batch), ("show", show), ("bench", bench)):
+        p = sub.add_parser(name, help=cmd.HELP, description=_description(cmd))
+        cmd.add_arguments(p)
+        p.set_defaults(func=cmd.command)
+    return parser
+
+
+def join_axis_values(argv: list[str]) -> list[str]:
+    """``--axis -1,0,0`` -> ``--axis=-1,0,0`` (argparse takes ``-1,0,0`` for an option)."""
+    out, i = [], 0
+    while i < len(argv):
+        if argv[i] == "--axis" and i + 1 < len(argv) and _NEGATIVE_AXIS.match(argv[i + 1]):
+            out.append(f"--axis={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line on ``argv`` (default ``sys.argv[1:]``); the exit status."""
+    argv = join_axis_values(list(sys.argv[1:] if argv is None else argv))
+    parser = build_parser()
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        try:
+            args = parser.parse_args(argv)
+            return int(args.func(args) or 0)
+        except InputError as exc:
+            print(f"recon3d: error: {exc}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print("recon3d: interrupted", file=sys.stderr)
+            return 130

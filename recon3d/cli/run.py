@@ -1,0 +1,100 @@
+"""``recon3d run INPUT --out DIR``: sense, reconstruct, score, write the outputs.
+
+Slice INPUT along one or more axes, run the paper's 2D algorithm on every
+slice against a simulated probe, rebuild a watertight surface and score it
+against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply,
+scene.vtm (+ scene/) and coverage.png.
+
+The flags of the run parameters are generated from :data:`recon3d.config.PARAMS`;
+the command's own flags (``--out``, ``--no-png``, ``--quiet``) are here.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from tqdm import tqdm
+
+import meshes
+from recon3d.api import execute, load_input
+from recon3d.checks import check_out_dir
+from recon3d.cli.printing import summary_lines, warn
+from recon3d.config import PARAMS, make_config, validate
+
+__all__ = ["HELP", "add_arguments", "command", "COMMAND_FLAGS"]
+
+HELP = "sense every slice of a mesh, rebuild its surface and score it"
+
+COMMAND_FLAGS = (
+    ("--no-png", "skip coverage.png (no OpenGL)",
+     "skip `coverage.png`; without OpenGL (no EGL, no display) it is skipped anyway, with a "
+     "one-line warning, and the other four outputs are written"),
+    ("--quiet", "no progress bar, mesh report or notes (warnings still print)",
+     "no progress bar, mesh report or notes; warnings still print (one line each)"),
+)
+"""The flags of ``recon3d run`` that are not run parameters: (flag, help, README meaning)."""
+
+
+def add_run_arguments(p: argparse.ArgumentParser) -> None:
+    """One flag per run parameter, spelled, parsed and explained as its :class:`Param` says."""
+    for prm in PARAMS:
+        if prm.repeat:
+            p.add_argument(prm.flag, action="append", default=None,
+                           metavar=prm.key.upper(), help=prm.help)
+        else:
+            p.add_argument(prm.flag, type=prm.parse, choices=prm.choices, default=None,
+                           help=prm.help)
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("input", help="built-in scene name (see 'recon3d scenes') or mesh file")
+    p.add_argument("--out", required=True, help="output directory (created if missing)")
+    add_run_arguments(p)
+    for flag, text, _ in COMMAND_FLAGS:
+        p.add_argument(flag, action="store_true", help=text)
+
+
+def _progress_bar(total, name, quiet):
+    if quiet:
+        return None
+    return tqdm(total=total, desc=f"sensing {name}", unit="slice", file=sys.stderr)
+
+
+def command(args) -> int:
+    given = {p.key: v for p in PARAMS if (v := getattr(args, p.key)) is not None}
+    config = make_config(**given)
+    mesh, name, notes = load_input(args.input)
+    notes += validate(mesh, config, spelling="flag")
+    check_out_dir(args.out, "--out")
+    if os.path.exists(args.input) and not args.quiet:  # a file: one-line report (units, scale)
+        print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
+    for note in notes:
+        warn(note)
+    per_axis = config.max_slices if config.slices == "auto" else config.slices
+    bar = _progress_bar(per_axis * len(config.axes), name, args.quiet)
+
+    def progress(srun):
+        if bar is not None:
+            bar.update(1)
+            cov = srun.metrics.get("coverage")
+            bar.set_postfix(motions=srun.result.stats.motions,
+                            coverage="n/a" if cov is None else f"{cov:.3f}")
+
+    def stage(what):
+        if bar is not None:
+            bar.set_description(f"{what} {name}")
+
+    try:
+        result = execute(mesh, name, config, progress=progress, stage=stage)
+        if bar is not None:
+            bar.set_description(f"writing {name}")
+        files = result.save(args.out, png=not args.no_png)
+    finally:
+        if bar is not None:
+            bar.close()
+    for note in result.warnings:
+        if not args.quiet:
+            print(f"recon3d: note: {note}", file=sys.stderr)
+    print("\n".join(summary_lines(result, files)))
+    return 0

@@ -1,0 +1,380 @@
+"""The parameters of a run: one dataclass, the single source of every spelling.
+
+Each field of :class:`RunConfig` carries a :class:`Param` (its public name,
+CLI flag, parser, help text, bounds and README wording). From them come
+
+* the flags of ``recon3d run`` (:func:`recon3d.cli.run` loops over :data:`PARAMS`),
+* the keyword arguments of :func:`recon3d.run` (:func:`make_config`, :func:`run_signature`),
+* the ``[params]`` keys of a batch manifest (:func:`batch_keys`, plus ``eps_share``),
+* their documentation (:func:`options_table`, :func:`numpydoc_params`,
+  :func:`manifest_doc`), and the checks (:func:`validate`).
+
+Defaults that derive from the mesh -- eps, tol, probe length, jobs -- are
+resolved in one place, :func:`resolve`.
+
+>>> [p.flag for p in PARAMS][:3]
+['--axis', '--slices', '--max-slices']
+>>> make_config(slices=4, axis=["z", "x"]).axes
+('z', 'x')
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import inspect
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import trimesh
+
+import slicer
+from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, TOL_SHARE, InputError, at_least,
+                            check_axes, check_backend, check_eps, check_slice_tol,
+                            check_slices, check_tol, positive)
+
+__all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "make_config", "validate", "resolve",
+           "diagonal",
+           "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
+           "manifest_doc", "run_signature", "BATCH_ONLY", "COARSE"]
+
+COARSE = 2.0
+"""``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
+
+
+def _slices(text):
+    """``--slices``: a positive integer or 'auto'."""
+    if text == "auto":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer or 'auto', got {text!r}") from None
+
+
+def _axes(value) -> tuple:
+    """``axis`` keyword -> the tuple of axes (one vector given as a list of numbers)."""
+    axes = tuple(value) if isinstance(value, (list, tuple)) else (value,)
+    if axes and all(isinstance(a, (int, float, np.number)) for a in axes):
+        axes = (np.asarray(axes, dtype=float),)  # one vector given as a list
+    return axes
+
+
+def _auto(config) -> bool:
+    return config.slices == "auto"
+
+
+@dataclass(frozen=True)
+class Param:
+    """How one run parameter is spelled, parsed, checked and documented.
+
+    key : str -- keyword of :func:`recon3d.run` and manifest key (default: the field name).
+    flag : str -- CLI flag (default ``--key`` with dashes).
+    parse : callable or None -- argparse ``type`` (None: str).
+    repeat : bool -- the flag may be repeated (``action='append'``: axis).
+    help : str -- argparse help (and the docstring of :func:`recon3d.run`).
+    convert : callable(value) -- keyword value -> field value (may raise InputError).
+    check : callable(value, name) -- bounds, told the caller's spelling of the name.
+    when : callable(RunConfig) -> bool -- whether ``check`` applies (default always).
+    choices : tuple, optional -- allowed values (CLI ``choices``).
+    metavar : str -- metavar of the README table (``--axis A``).
+    shown_default : str -- the README default column.
+    doc : tuple -- README rows: a meaning (of ``flag metavar``), or (value, meaning) for
+        a value spelled out (``--slices auto``).
+    batch : bool -- a ``[params]`` key of batch manifests.
+    keyword_default, keyword_type : str, optional -- the default and type as
+        :func:`recon3d.run` takes them, where they differ from the field's (axis).
+    """
+
+    help: str
+    doc: tuple
+    shown_default: str
+    parse: Callable | None = None
+    key: str = ""
+    flag: str = ""
+    convert: Callable | None = None
+    check: Callable | None = None
+    when: Callable | None = None
+    choices: tuple | None = None
+    repeat: bool = False
+    metavar: str = ""
+    batch: bool = True
+    keyword_default: str | None = None
+    keyword_type: str | None = None
+    name: str = ""  # the field name (filled in below)
+
+
+def _param(default, **kw) -> Any:
+    return field(default=default, metadata={"param": Param(**kw)})
+
+
+_LO, _HI = EPS_SHARE
+
+
+@dataclass(frozen=True)
+class RunConfig:
+    """Parameters of one run (the flags of ``recon3d run``, the keywords of ``recon3d.run``).
+
+    The metadata of each field (:class:`Param`) is the single source of its
+    spelling, help text, bounds and documentation; :func:`options_table`
+    renders them. ``bootstrap`` is internal (initial insertions per slice).
+    """
+
+    axes: tuple = _param(
+        ("z",), key="axis", keyword_default="z", keyword_type="str, (3,) float or a list of them",
+        repeat=True, metavar="A", shown_default="`z`", convert=_axes,
+        check=check_axes,
+        help="slice normal: x, y, z, -x, ... or nx,ny,nz; repeat for several families fused "
+        "into one surface (default z)",
+        doc=(("slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
+              "-1,0,0` works). Repeat it for several slice families fused into one surface"),))
+    slices: int | str = _param(
+        8, parse=_slices, metavar="N", shown_default="8", convert=check_slices,
+        check=lambda v, n: at_least(v, n), when=lambda c: not _auto(c),
+        help="slices per axis (default 8), or 'auto': adaptive slicing -- start coarse, add "
+        "slices where neighbouring sensed sections differ, eps per slice from the features "
+        "it shows",
+        doc=(("planes per axis, evenly spaced strictly inside the mesh; a "
+              "surface needs at least 2"),
+             ("auto", "adaptive slicing (`recon3d.sensing.adaptive`): start with 3–5 "
+              "of `--max-slices` evenly spaced candidates, add the middle candidate between "
+              "neighbours whose sensed sections differ by more than `--slice-tol`, and sense "
+              "each slice at 2 × eps, or at eps where it shows features (parts or pockets) "
+              "narrower than 4 × eps")))
+    max_slices: int = _param(
+        32, parse=int, metavar="N", shown_default="32", check=lambda v, n: at_least(v, n, low=3),
+        when=_auto, help="--slices auto: candidate planes per axis (default 32)",
+        doc=(("`--slices auto`: candidate planes per axis (the uniform run "
+              "it replaces)"),))
+    slice_tol: float = _param(
+        0.005, parse=float, metavar="S", shown_default="0.005", check=check_slice_tol,
+        when=_auto, help="--slices auto: refine between neighbours whose sensed sections differ "
+        "by more than this share of the diagonal (default 0.005)",
+        doc=(("`--slices auto`: refine between neighbours whose sensed "
+              "sections differ (Hausdorff) by more than S × diagonal"),))
+    eps: float | None = _param(
+        None, parse=float, metavar="E", shown_default="diagonal / 200",
+        help=f"the paper's epsilon, in mesh units (default: bounding-box diagonal / 200; "
+        f"allowed: {_LO:g} to {_HI:g} x diagonal)",
+        doc=((f"the paper's eps, in mesh units; must lie in **[{_LO:g}, {_HI:g}] × "
+              f"the bounding-box diagonal** (outside: a unit mix-up or a meaningless run, "
+              f"rejected); above {EPS_WARN_SHARE:g} × diagonal a warning says the numbers are "
+              f"coarse"),))
+    tol: float | None = _param(
+        None, parse=float, metavar="T", shown_default="eps / 20",
+        help=f"contact resolution (default eps/20; allowed: eps*{TOL_SHARE:g} up to, not "
+        f"including, eps)",
+        doc=((f"contact resolution; must lie in **[eps / {1 / TOL_SHARE:g}, "
+              f"eps)**"),))
+    backend: str = _param(
+        "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=check_backend,
+        help="contact backend (default embree; trimesh: its generic ray engine, slow)",
+        doc=(("`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
+              "reference) or `trimesh` (trimesh's generic ray engine; ≈ 20–35 × slower than "
+              "Embree per motion, for comparison)"),))
+    max_motions: int = _param(
+        20000, parse=int, metavar="M", shown_default="20000", check=lambda v, n: at_least(v, n),
+        help="motion budget per slice (default 20000)",
+        doc=(("motion budget per slice (reported when hit)"),))
+    jobs: int | None = _param(
+        None, parse=int, metavar="N", shown_default="number of cores", batch=False,
+        check=lambda v, n: at_least(v, n), when=lambda c: c.jobs is not None,
+        help="parallel processes (default: number of cores; results do not depend on it)",
+        doc=(("slices run in N processes; the results are identical for every N "
+              "(tested)"),))
+    probe_speed: float = _param(
+        20.0, parse=float, metavar="V", shown_default="20", check=lambda v, n: positive(v, n),
+        help="joint speed for the robot time, mesh units per second (default 20; scenes are "
+        "in mm)",
+        doc=(("joint speed for the robot time, mesh units / s (the scenes "
+              "are in mm)"),))
+    motion_overhead: float = _param(
+        0.2, parse=float, metavar="S", shown_default="0.2",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="seconds per motion for the robot time (default 0.2)",
+        doc=(("seconds per motion (stop, read the sensors, plan) for "
+              "the robot time"),))
+    bootstrap: int = 12  # internal: initial insertions around each slice
+
+
+def _params() -> tuple[Param, ...]:
+    out = []
+    for f in dataclasses.fields(RunConfig):
+        p = f.metadata.get("param")
+        if p is not None:
+            key = p.key or f.name
+            out.append(dataclasses.replace(p, name=f.name, key=key,
+                                           flag=p.flag or "--" + key.replace("_", "-")))
+    return tuple(out)
+
+
+PARAMS: tuple[Param, ...] = _params()
+"""The public run parameters, in CLI order."""
+
+_BY_KEY = {p.key: p for p in PARAMS}
+
+BATCH_ONLY = {"eps_share": ("eps", "eps as a share of the mesh diagonal (instead of eps in "
+                                   "mesh units)")}
+"""Manifest keys that are not run parameters: key -> (the parameter it sets, meaning)."""
+
+
+def diagonal(mesh: trimesh.Trimesh) -> float:
+    """Bounding-box diagonal of a mesh (its referenced vertices, as ``mesh.bounds``).
+
+    :func:`slicer.mesh_scale` of the bounds: bit for bit the norm of
+    ``np.ptp(mesh.bounds, axis=0)`` (``mesh_scale(mesh)`` itself spans every
+    vertex, unreferenced ones too).
+
+    >>> diagonal(trimesh.creation.box(extents=[3.0, 4.0, 12.0]))
+    13.0
+    """
+    return slicer.mesh_scale(mesh.bounds)
+
+
+def batch_keys() -> tuple[str, ...]:
+    """The keys of a manifest's ``[params]``: the run parameters (not jobs) and eps_share."""
+    out = []
+    for p in PARAMS:
+        if p.batch:
+            out.append(p.key)
+            out += [k for k, (target, _) in BATCH_ONLY.items() if target == p.key]
+    return tuple(out)
+
+
+def default_jobs() -> int:
+    """Number of cores this process may use (the default of ``jobs``)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def make_config(**params) -> RunConfig:
+    """A :class:`RunConfig` from :func:`recon3d.run`'s keywords (converted, not yet checked)."""
+    kw = {}
+    for key, value in params.items():
+        p = _BY_KEY.get(key)
+        if p is None:
+            raise TypeError(f"run() got an unexpected keyword argument {key!r}")
+        kw[p.name] = p.convert(value) if p.convert is not None else value
+    return RunConfig(**kw)
+
+
+def keyword_defaults() -> dict:
+    """The defaults of :func:`recon3d.run`'s keywords: key -> value."""
+    fields = {f.name: f.default for f in dataclasses.fields(RunConfig)}
+    return {p.key: fields[p.name] if p.keyword_default is None else p.keyword_default
+            for p in PARAMS}
+
+
+def run_signature(first=(), last=()) -> inspect.Signature:
+    """The signature of :func:`recon3d.run`: ``first``, the parameters (keyword-only), ``last``."""
+    kw = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=v)
+          for k, v in keyword_defaults().items()]
+    return inspect.Signature([*first, *kw, *last])
+
+
+@dataclass(frozen=True)
+class Resolved:
+    """The defaults of a run that derive from the mesh, resolved once.
+
+    diagonal : float -- bounding-box diagonal (:func:`diagonal`).
+    eps, tol : float -- ``config.eps`` or diagonal / 200; ``config.tol`` or eps / 20.
+    tol_share : float -- tol / eps as adaptive slicing scales it (1/20 by default).
+    first_eps : float -- the eps of the first pass (COARSE x eps for ``--slices auto``).
+    probe_length : float or None -- 4 x (largest slice radius + first_eps), when slices are given.
+    jobs : int -- ``config.jobs`` or the number of cores.
+    """
+
+    diagonal: float
+    eps: float
+    tol: float
+    tol_share: float
+    first_eps: float
+    probe_length: float | None
+    jobs: int
+
+
+def resolve(config: RunConfig, diag: float, slices=None) -> Resolved:
+    """Fill in the mesh-derived defaults of ``config`` (the one place they are computed).
+
+    slices : list of list of slicer.Slice, optional -- the cut families (for the probe length).
+
+    >>> r = resolve(RunConfig(), 100.0)
+    >>> r.eps, r.tol, r.first_eps
+    (0.5, 0.025, 0.5)
+    """
+    eps = float(config.eps) if config.eps is not None else diag / 200.0
+    tol = float(config.tol) if config.tol is not None else eps / 20.0
+    share = (float(config.tol) / eps) if config.tol is not None else 1 / 20
+    first = COARSE * eps if config.slices == "auto" else eps
+    length = None
+    if slices is not None:
+        radius = max((s.bounding_circle()[1] for fam in slices for s in fam if not s.is_empty),
+                     default=1.0)
+        length = 4.0 * (radius + first)
+    jobs = default_jobs() if config.jobs is None else int(config.jobs)
+    return Resolved(diag, eps, tol, share, first, length, jobs)
+
+
+def validate(mesh: trimesh.Trimesh, config: RunConfig, spelling: str = "key") -> list[str]:
+    """Check ``config`` against ``mesh`` before any sensing; return warnings.
+
+    spelling : 'key' (Python: ``eps``), 'flag' (CLI: ``--eps``) or 'params'
+        (manifest: ``params.eps``) -- how error messages name parameters.
+    """
+    def name(p):
+        return {"key": p.key, "flag": p.flag, "params": f"params.{p.key}"}[spelling]
+
+    for p in PARAMS:
+        if p.check is not None and (p.when is None or p.when(config)):
+            p.check(getattr(config, p.name), name(p))
+    diag = diagonal(mesh)
+    if not np.isfinite(diag) or diag <= 0:
+        raise InputError("the mesh has no extent")
+    eps_name, tol_name = name(_BY_KEY["eps"]), name(_BY_KEY["tol"])
+    if config.eps is not None:
+        positive(config.eps, eps_name)
+    if config.tol is not None:
+        positive(config.tol, tol_name)
+    res = resolve(config, diag)
+    note = check_eps(res.eps, diag, eps_name)
+    if config.tol is not None:
+        check_tol(res.tol, res.eps, tol_name)
+    return [note] if note else []
+
+
+def options_table(extra=()) -> list[str]:
+    """The README's table of ``recon3d run`` options (Markdown lines).
+
+    extra : list of (option, meaning) -- flags of the command that are not
+        run parameters (``--no-png``, ``--quiet``), appended with no default.
+    """
+    rows = []
+    for p in PARAMS:
+        for row in p.doc:
+            if isinstance(row, str):  # the flag with its metavar, and the default
+                rows.append((f"`{f'{p.flag} {p.metavar}'.strip()}`", p.shown_default, row))
+            else:  # (a value of the flag spelled out, meaning)
+                rows.append((f"`{p.flag} {row[0]}`", "", row[1]))
+    rows += [(option, "", meaning) for option, meaning in extra]
+    return ["| option | default | meaning |", "|---|---|---|"] + [
+        f"| {option} | {default + ' ' if default else ''}| {meaning} |"
+        for option, default, meaning in rows]
+
+
+def numpydoc_params() -> str:
+    """The run parameters as a numpydoc ``Parameters`` block (for :func:`recon3d.run`)."""
+    types = {f.name: f.type for f in dataclasses.fields(RunConfig)}
+    defaults = keyword_defaults()
+    return "\n".join(f"{p.key} : {p.keyword_type or types[p.name]}, default "
+                     f"{defaults[p.key]!r}\n    {p.help}." for p in PARAMS)
+
+
+def manifest_doc() -> str:
+    """The ``[params]`` keys of a batch manifest, in a sentence (``recon3d batch --help``)."""
+    extra = "; ".join(f"{k}: {meaning}" for k, (_, meaning) in BATCH_ONLY.items())
+    return (f"[params] keys: {', '.join(batch_keys())} (the keywords of recon3d.run but jobs; "
+            f"{extra}).")

@@ -1,0 +1,68 @@
+"""Write the outputs of ``recon3d run`` into a directory, all or nothing (:class:`Staged`).
+
+A machine without OpenGL cannot render ``coverage.png``: the other files
+are still written and a ``RuntimeWarning`` says why the picture is missing.
+"""
+from __future__ import annotations
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from recon3d.io import ply
+from recon3d.io.staged import Staged
+from recon3d.viz import plot
+
+__all__ = ["OUTPUTS", "write_outputs", "write_json"]
+
+OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png")
+"""Files of a complete run (``scene.vtm`` comes with its ``scene/`` folder)."""
+
+
+def write_json(path, obj, indent=1) -> None:
+    """Write ``obj``; ``indent=None`` writes compact JSON through the C encoder
+    (``json.dump`` and any indent take the pure-Python one: ~10x slower on
+    the 10+ MB sensing document of a large run)."""
+    text = json.dumps(obj, indent=indent, allow_nan=False)
+    with open(path, "w") as fh:
+        fh.write(text)
+
+
+def _render(blocks, path, title) -> None:
+    try:
+        plot.save_png(blocks, path, title=title)
+    except Exception as exc:  # VTK raises many kinds when OpenGL is missing
+        msg = " ".join(str(exc).split())[:200]
+        warnings.warn(f"coverage.png not written: {type(exc).__name__}: {msg} (needs OpenGL: "
+                      f"EGL or a display; --no-png skips it)", RuntimeWarning, stacklevel=3)
+
+
+def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
+                  title: str = "", png: bool = True) -> list[Path]:
+    """Write the outputs of one run into ``out``.
+
+    Parameters
+    ----------
+    out : path -- created if missing (and removed again if writing fails).
+    sensing, metrics : dict -- the JSON documents.
+    surface : trimesh.Trimesh with ``face_attributes['label']``.
+    blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
+    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc).
+
+    Returns
+    -------
+    list of Path -- the files written (the ``scene/`` folder included).
+    """
+    staged = Staged(out, replaces=OUTPUTS)
+    with staged as stage:
+        write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
+        write_json(stage / "metrics.json", metrics)
+        ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
+                      np.asarray(surface.face_attributes["label"]))
+        blocks.save(str(stage / "scene.vtm"))
+        if png:
+            _render(blocks, stage / "coverage.png", title)
+    return staged.written

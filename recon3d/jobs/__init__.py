@@ -1,0 +1,1 @@
+"""Many runs: batch manifests (:mod:`.batch`) and independent tasks on Dask (:mod:`.cluster`)."""

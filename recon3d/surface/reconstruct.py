@@ -1,0 +1,58 @@
+"""From a sensed run to a labelled surface.
+
+``reconstruct`` closes every slice (:mod:`recon3d.surface.closure`), builds
+one solid per family (:mod:`recon3d.surface.solid`) and fuses them; the 3D
+scores are :mod:`recon3d.score`'s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import trimesh
+
+from recon3d.config import diagonal
+from recon3d.records import MeshRun
+from recon3d.surface.closure import SliceRegion, slice_region
+from recon3d.surface.field import grid_step
+from recon3d.surface.solid import FamilySolid, family_solid, fuse
+
+__all__ = ["Reconstruction", "reconstruct"]
+
+
+@dataclass
+class Reconstruction:
+    """The surface of a run and what it was built from.
+
+    surface : trimesh.Trimesh -- watertight, ``face_attributes['label']`` (f,) int.
+    regions : list of list of SliceRegion -- per family, per slice.
+    solids : list of FamilySolid or None -- per family (None: no surface).
+    step : float -- grid step of the level set.
+    notes : list of str -- why a family gave no surface.
+    """
+
+    surface: trimesh.Trimesh
+    regions: list[list[SliceRegion]]
+    solids: list[FamilySolid | None]
+    step: float
+    notes: list[str] = field(default_factory=list)
+
+
+def reconstruct(run: MeshRun) -> Reconstruction:
+    """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`."""
+    step = grid_step(run.eps, diagonal(run.mesh))
+    snap = 2.0 * run.tol
+    regions, solids, notes = [], [], []
+    for fam in run.families:
+        regs = [slice_region(s.result.w1, s.result.w2, s.result.w3, s.result.unknown, snap)
+                for s in fam.slices]
+        regions.append(regs)
+        if len(fam.slices) < 2:
+            solids.append(None)
+            notes.append(f"family {fam.label}: a surface needs at least 2 slices")
+            continue
+        solid = family_solid(regs, [s.slice.plane for s in fam.slices], step)
+        if solid is None:
+            notes.append(f"family {fam.label}: nothing sensed, no surface")
+        solids.append(solid)
+    surface = fuse(solids, run.mesh.bounds)
+    return Reconstruction(surface, regions, solids, step, notes)

@@ -1,0 +1,160 @@
+"""The walls of recon3d, visible in its layout (model: test_core2d_walls.py).
+
+* Rooms, each with one job: ``sensing/``, ``surface/``, ``score/``, ``io/``,
+  ``viz/``, ``jobs/``, ``cli/``, ``benchmark/``; the shared modules
+  ``checks`` <- ``config`` <- ``records`` import no room; ``api`` joins the
+  rooms for ``recon3d.run``. Every arrow points one way (ALLOWED).
+* Nothing imports ``recon3d.cli`` but ``recon3d/__main__.py`` (and the
+  console script); ``surface/``, ``score/``, ``io/`` and ``viz/`` never
+  import ``sensing/``.
+* Imports sit at the top of a module unless a comment on that line or the
+  line before says why it is lazy; pyvista, matplotlib and VTK are
+  imported in one place only, ``recon3d/viz/libs.py``, so ``import recon3d``
+  loads none of them (nor Dask).
+"""
+import ast
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+RECON3D = pathlib.Path(__file__).resolve().parents[1] / "recon3d"
+SHARED = {"recon3d.checks", "recon3d.config", "recon3d.records"}
+LIBS = "recon3d.viz.libs"
+# room (or top-level module) -> recon3d modules it may import besides itself and SHARED
+ALLOWED = {
+    "shared": set(),
+    "viz": set(),
+    "surface": {LIBS},
+    "score": {"recon3d.surface", LIBS},
+    "sensing": {"recon3d.surface"},
+    "io": {"recon3d.viz"},
+    "api": {"recon3d.sensing", "recon3d.surface", "recon3d.score", "recon3d.io",
+            "recon3d.viz"},
+    "jobs": {"recon3d.api", "recon3d.io"},
+    "benchmark": {"recon3d", "recon3d.api", "recon3d.io", "recon3d.jobs", LIBS},
+    "cli": {"recon3d.api", "recon3d.io", "recon3d.viz", "recon3d.jobs", "recon3d.benchmark"},
+    "init": {"recon3d.api", "recon3d.io"},  # the public names
+    "main": {"recon3d.cli"},
+}
+HEAVY = ("pyvista", "matplotlib", "vtk", "vtkmodules")
+
+
+def _room(path):
+    rel = path.relative_to(RECON3D)
+    if len(rel.parts) > 1:
+        return rel.parts[0]
+    return {"__init__.py": "init", "__main__.py": "main", "api.py": "api"}.get(
+        rel.name, "shared")
+
+
+def _module(path):
+    return ".".join(("recon3d",) + path.relative_to(RECON3D).with_suffix("").parts)
+
+
+def _is_module(name):
+    if not name.startswith("recon3d."):
+        return False
+    rel = RECON3D.joinpath(*name.split(".")[1:])
+    return rel.with_suffix(".py").is_file() or (rel / "__init__.py").is_file()
+
+
+def _imports(path):
+    """(module imported, line, nested in a function or class?) for every import."""
+    tree = ast.parse(path.read_text())
+    parents = {}
+    for node in ast.walk(tree):
+        for child in ast.iter_child_nodes(node):
+            parents[child] = node
+    for node in ast.walk(tree):
+        if not isinstance(node, (ast.Import, ast.ImportFrom)):
+            continue
+        up, nested = parents.get(node), False
+        while up is not None:
+            nested |= isinstance(up, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+            up = parents.get(up)
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif node.level:  # relative: resolve against the file's package
+            pkg = _module(path).split(".")[:-node.level]
+            names = [".".join(pkg + ([node.module] if node.module else []))]
+        else:  # a submodule where the name is one (from recon3d.viz import libs)
+            names = [f"{node.module}.{a.name}" if _is_module(f"{node.module}.{a.name}")
+                     else node.module for a in node.names]
+        for name in names:
+            yield name, node.lineno, nested
+
+
+FILES = sorted(RECON3D.rglob("*.py"))
+
+
+def test_the_rooms_exist_and_the_top_level_is_small():
+    rooms = sorted(p.name for p in RECON3D.iterdir() if (p / "__init__.py").is_file())
+    assert rooms == ["benchmark", "cli", "io", "jobs", "score", "sensing", "surface", "viz"]
+    top = sorted(p.name for p in RECON3D.glob("*.py"))
+    assert top == ["__init__.py", "__main__.py", "api.py", "checks.py", "config.py",
+                   "records.py"]
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))
+def test_every_import_arrow_points_one_way(path):
+    room = _room(path)
+    own = _module(path) if room in ("shared", "api", "init", "main") else f"recon3d.{room}"
+    for mod, line, _ in _imports(path):
+        if mod != "recon3d" and not mod.startswith("recon3d."):
+            continue
+        ok = (mod in SHARED or mod == own or mod.startswith(own + ".")
+              or any(mod == a or mod.startswith(a + ".") for a in ALLOWED[room]))
+        assert ok, f"{path.relative_to(RECON3D)}:{line} ({room}) imports {mod}"
+
+
+def test_the_shared_modules_import_one_way_and_no_room():
+    order = ["recon3d.checks", "recon3d.config", "recon3d.records"]
+    for k, name in enumerate(order):
+        path = RECON3D / f"{name.split('.')[1]}.py"
+        mods = {m for m, _, _ in _imports(path) if m.startswith("recon3d")}
+        assert mods <= set(order[:k]), f"{name} imports {sorted(mods - set(order[:k]))}"
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))
+def test_nothing_imports_the_cli_and_no_room_below_imports_sensing(path):
+    room = _room(path)
+    for mod, line, _ in _imports(path):
+        if mod == "recon3d.cli" or mod.startswith("recon3d.cli."):
+            assert room in ("cli", "main"), f"{path.relative_to(RECON3D)}:{line} imports {mod}"
+        if mod == "recon3d.sensing" or mod.startswith("recon3d.sensing."):
+            assert room not in ("surface", "score", "io", "viz", "shared"), \
+                f"{path.relative_to(RECON3D)}:{line} imports {mod}"
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))
+def test_imports_sit_at_the_top_unless_a_comment_says_why_lazy(path):
+    lines = path.read_text().splitlines()
+    for mod, line, nested in _imports(path):
+        if nested:
+            said = " ".join(lines[max(0, line - 2):line])
+            assert "# lazy" in said, f"{path.relative_to(RECON3D)}:{line}: import of {mod} " \
+                                     f"inside a function without a '# lazy: why' comment"
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))
+def test_pyvista_and_matplotlib_come_through_viz_libs_only(path):
+    for mod, line, _ in _imports(path):
+        if mod.split(".")[0] in HEAVY:
+            assert _module(path) == LIBS, f"{path.relative_to(RECON3D)}:{line} imports {mod}"
+
+
+def test_import_recon3d_loads_no_plotting_library_and_no_dask():
+    code = ("import sys, recon3d, recon3d.cli, recon3d.jobs.batch, recon3d.benchmark.run3d; "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in "
+            "('pyvista', 'matplotlib', 'vtk', 'vtkmodules', 'dask', 'distributed')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_files_stay_small():
+    for path in FILES:
+        n = len(path.read_text().splitlines())
+        assert n <= 400, f"{path.relative_to(RECON3D)} has {n} lines"

@@ -176,7 +176,7 @@ class RunConfig:
         help="parallel processes (default: number of cores; results do not depend on it)",
         doc=(("slices run in N processes; the results are identical for every N "
               "(tested)"),))
-    units: str = _param(
+    units: Literal["mm", "cm", "m", "in", "ft"] = _param(
         "mm", choices=tuple(MM_PER_UNIT), shown_default="`mm`", metavar="U",
         check=lambda v, n: check_choice(v, n, MM_PER_UNIT),
         help="length unit of the mesh: mm, cm, m, in or ft (default mm; the scenes are in mm)",

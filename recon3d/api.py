@@ -10,18 +10,20 @@ Example::
 """
 from __future__ import annotations
 
+import importlib.metadata
 import inspect
 import os
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import trimesh
 
 import meshes
 from meshes.loading import open_edge_count
-from recon3d.checks import InputError, check_out_dir
+from recon3d.checks import InputError, check_flag, check_out_dir
 from recon3d.config import RunConfig, make_config, numpydoc_params, run_signature, validate
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import write_outputs
@@ -32,7 +34,21 @@ from recon3d.sensing import sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.viz import blocks as scene, plot
 
-__all__ = ["Result", "run", "load_input", "execute"]
+__all__ = ["Result", "run", "load_input", "execute", "Source", "__version__"]
+
+Source = trimesh.Trimesh | str | os.PathLike
+"""What :func:`run` senses: a trimesh, a built-in scene name or a mesh file path."""
+
+
+def _version() -> str:
+    try:
+        return importlib.metadata.version("pulling-probe-3d")
+    except importlib.metadata.PackageNotFoundError:  # pragma: no cover - not installed
+        return "0+unknown"
+
+
+__version__ = _version()
+"""The version of the installed distribution ``pulling-probe-3d``."""
 
 
 @dataclass
@@ -66,50 +82,107 @@ class Result:
         """The ``sensing.json`` object."""
         return sensing_document(self.sensing)
 
-    def blocks(self):
+    def __repr__(self) -> str:
+        fams = ", ".join(f"{f.label} x{len(f.slices)}" for f in self.sensing.families)
+        t = self.metrics.get("total", {})
+        f1 = ((t.get("surface") or {}).get("fscore") or {}).get("1%")
+        cov = t.get("coverage")
+        return (f"<recon3d.Result mesh={self.sensing.name!r} families=[{fams}] "
+                f"slices={len(self.slices)} eps={self.sensing.eps:.4g} "
+                f"F@1%={'n/a' if f1 is None else format(f1, '.3f')} "
+                f"coverage={'n/a' if cov is None else format(cov, '.3f')} "
+                f"warnings={len(self.warnings)}>")[:399]
+
+    def blocks(self) -> Any:
         """The ``scene.vtm`` multiblock (ground truth, surface, curves)."""
         gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step)
         return scene.scene_blocks(gt, self.surface, self.slices)
 
-    def plot(self, off_screen: bool | None = None, screenshot=None, **show_kwargs):
-        """Show the two coverage panels (pyvista); see :mod:`recon3d.viz.plot`."""
+    def plot(self, off_screen: bool | None = None, screenshot: str | os.PathLike | None = None,
+             **show_kwargs: Any) -> Any:
+        """The two coverage panels (see :mod:`recon3d.viz.plot`): a window, a file or a plotter.
+
+        Parameters
+        ----------
+        off_screen : bool, optional
+            Render without a window (default: when there is no display, or when
+            ``screenshot`` is given).
+        screenshot : str or path-like, optional
+            Write the picture to this PNG file.
+        **show_kwargs
+            Passed to ``pyvista.Plotter.show`` (on screen only).
+
+        Returns
+        -------
+        pathlib.Path or pyvista.Plotter
+            With ``screenshot``: the path written (the plotter is closed). Otherwise
+            the plotter: shown in a window first when on screen, or, off screen,
+            ready to render (``.screenshot(...)``, ``.show()``) -- nothing is drawn yet.
+        """
         if off_screen is None:
-            off_screen = not plot.has_display()
+            off_screen = screenshot is not None or not plot.has_display()
         if off_screen:
             plot.prepare_offscreen()
         p = plot.coverage_plotter(self.blocks(), title=self.sensing.name, off_screen=off_screen)
-        return p.show(screenshot=screenshot, **show_kwargs)
+        if screenshot is not None:
+            path = Path(screenshot)
+            try:
+                if off_screen:
+                    p.screenshot(str(path))
+                else:
+                    p.show(screenshot=str(path), **show_kwargs)
+            finally:
+                p.close()
+            return path
+        if not off_screen:
+            p.show(**show_kwargs)
+        return p
 
-    def save(self, out, png: bool = True) -> list[Path]:
+    def save(self, out: str | os.PathLike, png: bool = True) -> list[Path]:
         """Write sensing.json, metrics.json, surface.ply, scene.vtm, coverage.png into ``out``."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
                              self.blocks(), title=self.sensing.name, png=png)
 
 
-def load_input(source) -> tuple[trimesh.Trimesh, str, list[str]]:
-    """A trimesh, a scene name or a mesh path -> (trimesh, name, warnings)."""
-    if isinstance(source, trimesh.Trimesh):
-        if len(source.faces) == 0:
-            raise InputError("the mesh has no faces")
-        name = str(source.metadata.get("scene") or source.metadata.get("file_name") or "mesh")
-        notes = [] if source.is_watertight else [
-            f"{name}: mesh is not watertight ({open_edge_count(source)} boundary edges); "
-            f"slices may give open or broken contours"]
-        return source, name, notes
+def _checked(mesh: trimesh.Trimesh, name: str, drop_nonfinite: bool) -> trimesh.Trimesh:
+    """A given trimesh through the checks a loaded file gets (:mod:`meshes.validate`)."""
+    mesh = meshes.check_finite(mesh, name, drop=drop_nonfinite)
+    meshes.check_solid(mesh, name)
+    meshes.check_overlap(mesh, name)
+    return mesh
+
+
+def load_input(source: Source, drop_nonfinite: bool = False
+               ) -> tuple[trimesh.Trimesh, str, list[str]]:
+    """A trimesh, a scene name or a mesh path -> (trimesh, name, warnings).
+
+    Non-finite vertices, a flat mesh or one without faces raise :class:`InputError`;
+    ``drop_nonfinite`` drops non-finite vertices and their faces (with a warning).
+    """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", meshes.MeshWarning)
         try:
-            mesh = meshes.load(source)
+            if isinstance(source, trimesh.Trimesh):
+                name = str(source.metadata.get("scene") or source.metadata.get("file_name")
+                           or "mesh")
+                mesh = _checked(source, name, drop_nonfinite)
+            else:
+                mesh = meshes.load(source, drop_nonfinite=drop_nonfinite)
         except meshes.MeshError as exc:
             raise InputError(str(exc)) from None
     notes = [str(w.message) for w in caught if issubclass(w.category, meshes.MeshWarning)]
+    if isinstance(source, trimesh.Trimesh):
+        if not mesh.is_watertight:
+            notes.append(f"{name}: mesh is not watertight ({open_edge_count(mesh)} boundary "
+                         f"edges); slices may give open or broken contours")
+        return mesh, name, notes
     path = os.fspath(source)
     name = os.path.basename(path) if os.path.exists(path) else path
     return mesh, name, notes
 
 
-def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes=(),
+def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence[str] = (),
             progress: Callable[[SliceRun], None] | None = None,
             stage: Callable[[str], None] | None = None) -> Result:
     """Sense, reconstruct and score a checked mesh and config (see :func:`run`).
@@ -128,7 +201,8 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes=(),
     return Result(mesh, sensed, recon, metrics_document(sensed, surface, info), notes)
 
 
-def run(source, *, progress: Callable[[SliceRun], None] | None = None, **params) -> Result:
+def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,
+        **params: Any) -> Result:
     """Sense, reconstruct and score a mesh.
 
     Parameters
@@ -150,7 +224,8 @@ def run(source, *, progress: Callable[[SliceRun], None] | None = None, **params)
     UserWarning -- a mesh that is not watertight, a coarse eps (also in ``Result.warnings``).
     """
     config = make_config(**params)
-    mesh, name, notes = load_input(source)
+    check_flag(config.drop_nonfinite, "drop_nonfinite")
+    mesh, name, notes = load_input(source, config.drop_nonfinite)
     notes += validate(mesh, config)
     for note in notes:  # not watertight, coarse eps: say it where the caller looks
         warnings.warn(note, UserWarning, stacklevel=2)
@@ -160,5 +235,8 @@ def run(source, *, progress: Callable[[SliceRun], None] | None = None, **params)
 # the keywords and their documentation come from RunConfig (recon3d.config)
 run.__doc__ = run.__doc__.replace("{params}", numpydoc_params().replace("\n", "\n    "))
 run.__signature__ = run_signature(
-    first=[inspect.Parameter("source", inspect.Parameter.POSITIONAL_OR_KEYWORD)],
-    last=[inspect.Parameter("progress", inspect.Parameter.KEYWORD_ONLY, default=None)])
+    first=[inspect.Parameter("source", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                             annotation="trimesh.Trimesh | str | os.PathLike")],
+    last=[inspect.Parameter("progress", inspect.Parameter.KEYWORD_ONLY, default=None,
+                            annotation="Callable[[SliceRun], None] | None")])
+run.__signature__ = run.__signature__.replace(return_annotation="Result")

@@ -19,39 +19,28 @@ resolved in one place, :func:`resolve`.
 """
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import inspect
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import trimesh
 
 import slicer
-from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, TOL_SHARE, InputError, at_least,
-                            check_axes, check_backend, check_eps, check_slice_tol,
-                            check_slices, check_tol, positive)
+from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, InputError,
+                            at_least, check_axes, check_backend, check_choice, check_eps,
+                            check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
+                            check_slices, check_tol, parse_slices, positive, units_note)
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "make_config", "validate", "resolve",
-           "diagonal",
-           "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
+           "diagonal", "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
            "manifest_doc", "run_signature", "BATCH_ONLY", "COARSE"]
 
 COARSE = 2.0
 """``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
-
-
-def _slices(text):
-    """``--slices``: a positive integer or 'auto'."""
-    if text == "auto":
-        return text
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer or 'auto', got {text!r}") from None
 
 
 def _axes(value) -> tuple:
@@ -86,6 +75,7 @@ class Param:
     batch : bool -- a ``[params]`` key of batch manifests.
     keyword_default, keyword_type : str, optional -- the default and type as
         :func:`recon3d.run` takes them, where they differ from the field's (axis).
+    switch : bool -- an on/off flag (``--force``): no value on the command line.
     """
 
     help: str
@@ -103,6 +93,7 @@ class Param:
     batch: bool = True
     keyword_default: str | None = None
     keyword_type: str | None = None
+    switch: bool = False
     name: str = ""  # the field name (filled in below)
 
 
@@ -123,21 +114,22 @@ class RunConfig:
     """
 
     axes: tuple = _param(
-        ("z",), key="axis", keyword_default="z", keyword_type="str, (3,) float or a list of them",
-        repeat=True, metavar="A", shown_default="`z`", convert=_axes,
-        check=check_axes,
+        ("z",), key="axis", keyword_default="z",
+        keyword_type="str | Sequence[float] | Sequence[str | Sequence[float]]",
+        repeat=True, metavar="A", shown_default="`z`", convert=_axes, check=check_axes,
         help="slice normal: x, y, z, -x, ... or nx,ny,nz; repeat for several families fused "
         "into one surface (default z)",
         doc=(("slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
               "-1,0,0` works). Repeat it for several slice families fused into one surface"),))
-    slices: int | str = _param(
-        8, parse=_slices, metavar="N", shown_default="8", convert=check_slices,
-        check=lambda v, n: at_least(v, n), when=lambda c: not _auto(c),
-        help="slices per axis (default 8), or 'auto': adaptive slicing -- start coarse, add "
-        "slices where neighbouring sensed sections differ, eps per slice from the features "
-        "it shows",
-        doc=(("planes per axis, evenly spaced strictly inside the mesh; a "
-              "surface needs at least 2"),
+    slices: int | Literal["auto"] = _param(
+        8, parse=parse_slices, metavar="N", shown_default="8", convert=check_slices,
+        check=check_slice_count, when=lambda c: not _auto(c),
+        help="slices per axis, at least 2 (default 8; more than extent / eps needs --force), "
+        "or 'auto': adaptive slicing -- start coarse, add slices where neighbouring sensed "
+        "sections differ, eps per slice from the features it shows",
+        doc=(("planes per axis, evenly spaced strictly inside the mesh; a surface needs at "
+              "least 2; **more than the mesh's extent along the axis / eps** (slices closer "
+              "than eps) needs `--force`"),
              ("auto", "adaptive slicing (`recon3d.sensing.adaptive`): start with 3–5 "
               "of `--max-slices` evenly spaced candidates, add the middle candidate between "
               "neighbours whose sensed sections differ by more than `--slice-tol`, and sense "
@@ -184,19 +176,41 @@ class RunConfig:
         help="parallel processes (default: number of cores; results do not depend on it)",
         doc=(("slices run in N processes; the results are identical for every N "
               "(tested)"),))
+    units: Literal["mm", "cm", "m", "in", "ft"] = _param(
+        "mm", choices=tuple(MM_PER_UNIT), shown_default="`mm`", metavar="U",
+        check=lambda v, n: check_choice(v, n, MM_PER_UNIT),
+        help="length unit of the mesh: mm, cm, m, in or ft (default mm; the scenes are in mm)",
+        doc=(("length unit of the mesh (`mm`, `cm`, `m`, `in`, `ft`): the probe speed (mm/s) "
+              "is converted to mesh units for the robot time; a mesh under 1 mm or over 10 m "
+              "across in these units gets a warning"),))
     probe_speed: float = _param(
         20.0, parse=float, metavar="V", shown_default="20", check=lambda v, n: positive(v, n),
-        help="joint speed for the robot time, mesh units per second (default 20; scenes are "
-        "in mm)",
-        doc=(("joint speed for the robot time, mesh units / s (the scenes "
-              "are in mm)"),))
+        help="joint speed for the robot time, mm per second (default 20), converted to mesh "
+        "units with --units",
+        doc=(("joint speed for the robot time, mm / s (converted to mesh "
+              "units with `--units`)"),))
     motion_overhead: float = _param(
         0.2, parse=float, metavar="S", shown_default="0.2",
         check=lambda v, n: positive(v, n, allow_zero=True),
         help="seconds per motion for the robot time (default 0.2)",
         doc=(("seconds per motion (stop, read the sensors, plan) for "
               "the robot time"),))
+    force: bool = _param(
+        False, switch=True, shown_default="off", check=check_flag,
+        help="run even with slices closer than eps (more than extent / eps per axis)",
+        doc=(("allow `--slices` (or `--max-slices`) above extent / eps"),))
+    drop_nonfinite: bool = _param(
+        False, switch=True, shown_default="off", batch=False, check=check_flag,
+        help="drop NaN / inf vertices and their faces (with a warning) instead of refusing "
+        "the mesh",
+        doc=(("drop NaN / inf vertices and the faces using them, with a warning (the surface "
+              "has holes there); without it such a mesh is refused"),))
     bootstrap: int = 12  # internal: initial insertions around each slice
+
+    @property
+    def speed(self) -> float:
+        """The probe speed in mesh units per second (``probe_speed`` is in mm/s)."""
+        return float(self.probe_speed) / MM_PER_UNIT[self.units]
 
 
 def _params() -> tuple[Param, ...]:
@@ -271,8 +285,9 @@ def keyword_defaults() -> dict:
 
 def run_signature(first=(), last=()) -> inspect.Signature:
     """The signature of :func:`recon3d.run`: ``first``, the parameters (keyword-only), ``last``."""
-    kw = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=v)
-          for k, v in keyword_defaults().items()]
+    types = {f.name: f.type for f in dataclasses.fields(RunConfig)}
+    kw = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=v, annotation=(
+        _BY_KEY[k].keyword_type or types[_BY_KEY[k].name])) for k, v in keyword_defaults().items()]
     return inspect.Signature([*first, *kw, *last])
 
 
@@ -340,10 +355,15 @@ def validate(mesh: trimesh.Trimesh, config: RunConfig, spelling: str = "key") ->
     if config.tol is not None:
         positive(config.tol, tol_name)
     res = resolve(config, diag)
-    note = check_eps(res.eps, diag, eps_name)
+    notes = [check_eps(res.eps, diag, eps_name), units_note(diag, config.units,
+                                                            name(_BY_KEY["units"]))]
     if config.tol is not None:
         check_tol(res.tol, res.eps, tol_name)
-    return [note] if note else []
+    if not config.force:  # slices closer than eps, along each axis
+        count = "max_slices" if _auto(config) else "slices"
+        check_slice_spacing(getattr(config, count), mesh, config.axes, res.eps,
+                            name(_BY_KEY[count]), name(_BY_KEY["force"]))
+    return [n for n in notes if n]
 
 
 def options_table(extra=()) -> list[str]:

@@ -14,6 +14,7 @@ import sys
 import warnings
 
 import meshes
+from recon3d.api import __version__
 from recon3d.checks import InputError
 from recon3d.cli import batch, bench, run, show
 from recon3d.cli.printing import warn
@@ -27,7 +28,9 @@ class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (InputError) instead of usage + error lines."""
 
     def error(self, message):
-        raise InputError(f"{self.prog}: {message} (see '{self.prog} --help')")
+        # main prints "recon3d: error: "; a subcommand's messages name it ("run: ...")
+        where = self.prog.removeprefix("recon3d").strip()
+        raise InputError(f"{where + ': ' if where else ''}{message} (see '{self.prog} --help')")
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
@@ -52,6 +55,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Slice-based pulling-motion tactile sensing of 3D meshes "
         "(Kaneko & Tsuji, WAFR 2000, extended to 3D).",
     )
+    parser.add_argument("--version", action="version", version=f"recon3d {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     p = sub.add_parser("scenes", help="list built-in scenes as NAME<TAB>description")

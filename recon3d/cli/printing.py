@@ -39,9 +39,20 @@ def _num(x, fmt=".4f") -> str:
 
 
 def _names(run: MeshRun, slices: list[SliceRun]) -> str:
-    shown = [f"{run.families[s.family].label}#{s.slice.index}" for s in slices[:12]]
+    """``axis#k``: k counts the sensed slices of the axis from 0 (with ``--slices auto``
+    not the candidate plane, which metrics.json keeps as ``candidate``)."""
+    def position(s):
+        return next(k for k, x in enumerate(run.families[s.family].slices) if x is s)
+
+    shown = [f"{run.families[s.family].label}#{position(s)}" for s in slices[:12]]
     more = f" and {len(slices) - 12} more" if len(slices) > 12 else ""
     return ", ".join(shown) + more
+
+
+def _speed(config) -> str:
+    """The probe speed in mm/s, and in mesh units per second where those are not mm."""
+    mm = f"{config.probe_speed:g} mm/s"
+    return mm if config.units == "mm" else f"{mm} = {config.speed:g} {config.units}/s"
 
 
 def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
@@ -71,8 +82,8 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
                  f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
                  f"{t.get('push_attempts', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
-                 f"{format_seconds(t.get('robot_time_s'))} (at {run.config.probe_speed:g} "
-                 f"units/s + {run.config.motion_overhead:g} s/motion)")
+                 f"{format_seconds(t.get('robot_time_s'))} (probe {_speed(run.config)} + "
+                 f"{run.config.motion_overhead:g} s/motion)")
     several = [s for s in run.slices if s.outer_loops > 1]
     if several:
         lines.append(f"  {len(several)} slices hold several objects (outside the paper's "

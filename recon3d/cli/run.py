@@ -39,7 +39,10 @@ COMMAND_FLAGS = (
 def add_run_arguments(p: argparse.ArgumentParser) -> None:
     """One flag per run parameter, spelled, parsed and explained as its :class:`Param` says."""
     for prm in PARAMS:
-        if prm.repeat:
+        if prm.switch:  # on/off: absent is None, like every other parameter
+            p.add_argument(prm.flag, action="store_const", const=True, default=None,
+                           help=prm.help)
+        elif prm.repeat:
             p.add_argument(prm.flag, action="append", default=None,
                            metavar=prm.key.upper(), help=prm.help)
         else:
@@ -64,7 +67,7 @@ def _progress_bar(total, name, quiet):
 def command(args) -> int:
     given = {p.key: v for p in PARAMS if (v := getattr(args, p.key)) is not None}
     config = make_config(**given)
-    mesh, name, notes = load_input(args.input)
+    mesh, name, notes = load_input(args.input, config.drop_nonfinite)
     notes += validate(mesh, config, spelling="flag")
     check_out_dir(args.out, "--out")
     if os.path.exists(args.input) and not args.quiet:  # a file: one-line report (units, scale)

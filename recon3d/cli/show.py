@@ -5,6 +5,7 @@ the two coverage panels; needs a display.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from recon3d.checks import InputError
@@ -25,7 +26,9 @@ def command(args) -> int:
     if not vtm.is_file():
         raise InputError(f"no scene.vtm in {path} (write one with 'recon3d run ... --out DIR')")
     if not plot.has_display():
-        raise InputError(f"no display to open a window (DISPLAY is not set); look at "
+        display = os.environ.get("DISPLAY")
+        why = f"DISPLAY {display} cannot be opened" if display else "DISPLAY is not set"
+        raise InputError(f"no display to open a window ({why}); look at "
                          f"{vtm.parent / 'coverage.png'} or open {vtm} in ParaView")
     try:
         scene = blocks.read_scene(vtm)

@@ -87,12 +87,14 @@ def sensing_document(run: MeshRun) -> dict:
     }
 
 
-def _slice_metrics(srun: SliceRun, run: MeshRun) -> dict:
+def _slice_metrics(srun: SliceRun, run: MeshRun, position: int) -> dict:
     out = {"index": int(srun.slice.plane.index), "family": int(srun.family),
            "axis": run.families[srun.family].label, "reference": srun.has_reference,
            "outer_loops": srun.outer_loops,
            "holes": int(np.asarray(srun.slice.holes, dtype=bool).sum()),
            "open_chains": len(srun.slice.open_chains)}
+    if run.adaptive is not None:  # index: the position among sensed slices, as printed
+        out = {"index": position, "candidate": out.pop("index"), **out}
     out.update(srun.metrics)
     return out
 
@@ -106,7 +108,10 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
     surface : dict or None -- from :func:`recon3d.score.score`.
     surface_eval : dict -- its explanation (domain, tau, samples, family gains).
 
-    With ``--slices auto`` the document ends with ``adaptive`` (``run.adaptive``).
+    ``robot.probe_speed`` is in mesh units per second (``robot.units``; the
+    ``probe_speed`` parameter is in mm/s). With ``--slices auto`` each slice's
+    ``index`` is its position in its family and ``candidate`` its candidate
+    plane, and the document ends with ``adaptive`` (``run.adaptive``).
     """
     cfg = run.config
     total = dict(run.totals)
@@ -118,11 +123,12 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
         "seconds": float(run.seconds),
         "jobs": int(run.jobs),
         "families": _families(run),
-        "robot": {"probe_speed": float(cfg.probe_speed),
-                  "motion_overhead_s": float(cfg.motion_overhead), "rule": ROBOT_RULE},
+        "robot": {"probe_speed": cfg.speed, "motion_overhead_s": float(cfg.motion_overhead),
+                  "rule": ROBOT_RULE, "units": cfg.units},
         "total": total,
         "surface_eval": surface_eval,
-        "slices": [_slice_metrics(s, run) for s in run.slices],
+        "slices": [_slice_metrics(s, run, k) for fam in run.families
+                   for k, s in enumerate(fam.slices)],
     }
     if run.adaptive is not None:
         doc["adaptive"] = run.adaptive

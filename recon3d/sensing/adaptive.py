@@ -163,7 +163,8 @@ def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], 
     sense : callable(list of (family, index, eps)) -> list of SliceRun, in task order.
     families : int -- number of slice families.
     tol_share : float -- contact resolution as a share of each slice's eps.
-    probe_speed, motion_overhead : float -- robot time of the passes sensed again.
+    probe_speed, motion_overhead : float -- robot time of the passes sensed again (speed in
+        mesh units per second).
 
     Returns
     -------

@@ -70,7 +70,7 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
         plan = AdaptivePlan(n, 3 if n < 16 else 5, float(config.slice_tol) * res.diagonal,
                             res.eps)
         got, eps, tol, info = sense_adaptive(plan, sense, len(normals), res.tol_share,
-                                             config.probe_speed, config.motion_overhead)
+                                             config.speed, config.motion_overhead)
     else:
         got, eps, tol, info = _sense_uniform(sense, cuts, res)
     run = MeshRun(name, mesh, config, eps, tol, probe_length=res.probe_length, jobs=res.jobs,
@@ -80,7 +80,7 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
             out = got[f][i][0]
             out.slice = cuts[f][i]
             out.metrics["robot_time_s"] = robot_time(out.result.stats.as_dict(),
-                                                     config.probe_speed, config.motion_overhead)
+                                                     config.speed, config.motion_overhead)
             fam.slices.append(out)
     run.seconds = time.perf_counter() - t0
     return run

@@ -8,7 +8,11 @@ colours explicitly (string categories would be coloured alphabetically).
 """
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
+import functools
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -24,10 +28,39 @@ COVERAGE_COLORS = {0: "#e8e8e8", 1: "#2ca02c", 2: "#ff7f0e", 3: "#6a51a3"}
 
 
 def has_display() -> bool:
-    """True where an interactive window can open (X11 or Wayland on Linux)."""
+    """True where an interactive window can open (X11 or Wayland on Linux).
+
+    A ``DISPLAY`` is opened (and closed) with Xlib first, so one that is set
+    but unreachable (no X server there) counts as no display; without libX11
+    there is no X display either.
+    """
     if os.name == "nt" or os.uname().sysname == "Darwin":
         return True
-    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+    wayland = os.environ.get("WAYLAND_DISPLAY")
+    if wayland and Path(os.environ.get("XDG_RUNTIME_DIR", "/nonexistent"), wayland).exists():
+        return True
+    display = os.environ.get("DISPLAY")
+    return bool(display) and _x_display_opens(display)
+
+
+@functools.lru_cache(maxsize=8)
+def _x_display_opens(display: str) -> bool:
+    """Whether Xlib can open ``display`` (libX11 through ctypes; False without it)."""
+    lib = ctypes.util.find_library("X11")
+    if lib is None:
+        return False
+    try:
+        x11 = ctypes.CDLL(lib)
+    except OSError:
+        return False
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    handle = x11.XOpenDisplay(display.encode())
+    if not handle:
+        return False
+    x11.XCloseDisplay(handle)
+    return True
 
 
 def prepare_offscreen() -> None:

@@ -187,7 +187,8 @@ def parse_axis(axis) -> np.ndarray:
     big = float(np.max(np.abs(vec)))
     if big == 0.0:
         raise ValueError(f"axis normal is zero: {axis!r}")
-    norm = float(np.linalg.norm(vec))
+    with np.errstate(over="ignore", under="ignore"):
+        norm = float(np.linalg.norm(vec))
     if not 1e-150 < norm < 1e150:  # the square of a component over- or underflows
         vec = vec / big
         norm = float(np.linalg.norm(vec))

@@ -24,8 +24,9 @@ import slicer
 def _cli(*args, env=None):
     env = dict(os.environ if env is None else env,
                VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
+    # a timeout: a check that stopped working must fail the test, not start a long run
     return subprocess.run([sys.executable, "-m", "recon3d", *args], capture_output=True,
-                          text=True, env=env)
+                          text=True, env=env, timeout=300)
 
 
 def _one_error_line(r, code=2) -> str:

@@ -39,31 +39,35 @@ def format_seconds(s: float | None) -> str:
     return f"{int(s // 3600)} h {int(s % 3600 // 60):02d} min"
 
 
-def projected_seconds(slices: int, first_seconds: float, jobs: int) -> float:
-    """Wall seconds of sensing ``slices`` slices, each as long as the first, on ``jobs``
-    processes (no more processes than slices).
+def projected_seconds(slices: int, first_seconds: float, slice_seconds: float,
+                      jobs: int) -> float:
+    """Wall seconds of sensing ``slices`` slices on ``jobs`` processes: the first wave
+    (one slice per process, with their start-up) in ``first_seconds``, each further
+    slice in ``slice_seconds`` on one process.
 
-    >>> projected_seconds(2000, 1.5, 2), projected_seconds(3, 10.0, 8)
-    (1500.0, 10.0)
+    >>> round(projected_seconds(2000, 2.2, 0.4, 2), 1), projected_seconds(3, 10.0, 10.0, 8)
+    (401.8, 10.0)
     """
-    return slices * first_seconds / max(1, min(jobs, slices))
+    jobs = max(1, min(jobs, slices))
+    return first_seconds + (slices - jobs) * slice_seconds / jobs
 
 
-def estimate_note(slices: int, first_seconds: float, jobs: int,
+def estimate_note(slices: int, first_seconds: float, slice_seconds: float, jobs: int,
                   longer_than: float = LONG_RUN_SECONDS) -> str | None:
-    """The note printed once the first slice is sensed, when the run will take long.
+    """The note printed early in a run that will take long (:func:`projected_seconds`).
 
-    >>> estimate_note(2000, 1.5, 2)
-    'about 25 min for 2000 slices (first slice 1.5 s, 2 jobs)'
-    >>> estimate_note(24, 1.5, 2) is None  # 18 s: no note
+    >>> estimate_note(2000, 2.2, 0.4, 2)
+    'about 7 min for 2000 slices (first slice 2.2 s, then 0.40 s a slice, 2 jobs)'
+    >>> estimate_note(24, 2.2, 0.4, 2) is None  # 7 s: no note
     True
     """
-    total = projected_seconds(slices, first_seconds, jobs)
+    total = projected_seconds(slices, first_seconds, slice_seconds, jobs)
     if total <= longer_than:
         return None
     jobs = max(1, min(jobs, slices))
     return (f"about {max(1, round(total / 60))} min for {slices} slices (first slice "
-            f"{first_seconds:.1f} s, {jobs} job{'s' if jobs > 1 else ''})")
+            f"{first_seconds:.1f} s, then {slice_seconds:.2f} s a slice, "
+            f"{jobs} job{'s' if jobs > 1 else ''})")
 
 
 def _num(x, fmt=".4f") -> str:

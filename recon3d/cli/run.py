@@ -4,8 +4,8 @@ Slice INPUT along one or more axes, run the paper's 2D algorithm on every
 slice against a simulated probe, rebuild a watertight surface and score it
 against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply,
 scene.vtm (+ scene/) and coverage.png. DIR is locked while the run lasts: a
-second run into it is refused. A long run says how long it will take once
-its first slice is sensed.
+second run into it is refused. A long run says about how long it will take
+once its first slices are sensed.
 
 The flags of the run parameters are generated from :data:`recon3d.config.PARAMS`;
 the command's own flags (``--out``, ``--no-png``, ``--quiet``) are here.
@@ -90,16 +90,19 @@ def _run(args, config, mesh, name, notes):
     total = per_axis * len(config.axes)
     bar = _progress_bar(total, name, args.quiet)
     jobs = default_jobs() if config.jobs is None else int(config.jobs)
-    t0, first = time.perf_counter(), []
+    # the estimate of a long uniform run (an adaptive one senses fewer, at several eps):
+    # once the first slice (start-up included) and then one slice per worker are done
+    t0, done, need = time.perf_counter(), [], 1 if total <= jobs else jobs + 1
 
     def progress(srun):
         if bar is None:
             return
-        if not first:  # the estimate of a long uniform run (adaptive ones sense fewer)
-            first.append(time.perf_counter() - t0)
-            note = None if config.slices == "auto" else estimate_note(total, first[0], jobs)
-            if note is not None:
-                bar.write(f"recon3d: note: {note}", file=sys.stderr)
+        if len(done) < need and config.slices != "auto":
+            done.append(time.perf_counter() - t0)
+            if len(done) == need:
+                note = estimate_note(total, done[0], done[-1] - done[0] or done[0], jobs)
+                if note is not None:
+                    bar.write(f"recon3d: note: {note}", file=sys.stderr)
         bar.update(1)
         cov = srun.metrics.get("coverage")
         bar.set_postfix(motions=srun.result.stats.motions,

@@ -13,11 +13,11 @@ Example (the README has more)::
     res.metrics["total"]["surface"]["fscore"]["1%"]
     res.save("out/pocket")
 """
-from recon3d.api import Result, __version__, run
+from recon3d.api import Result, WorkerDied, __version__, run
 from recon3d.checks import InputError
 from recon3d.config import RunConfig
 from recon3d.io.ply import read_ply_labels
 from recon3d.records import LABELS
 
-__all__ = ["run", "Result", "RunConfig", "InputError", "LABELS", "read_ply_labels",
-           "__version__"]
+__all__ = ["run", "Result", "RunConfig", "InputError", "WorkerDied", "LABELS",
+           "read_ply_labels", "__version__"]

@@ -30,11 +30,11 @@ from recon3d.io.outputs import write_outputs
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
 from recon3d.score.evaluate import contour_cloud, coverage_mesh
-from recon3d.sensing import sense_mesh
+from recon3d.sensing import WorkerDied, sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.viz import blocks as scene, plot
 
-__all__ = ["Result", "run", "load_input", "execute", "Source", "__version__"]
+__all__ = ["Result", "run", "load_input", "execute", "Source", "WorkerDied", "__version__"]
 
 Source = trimesh.Trimesh | str | os.PathLike
 """What :func:`run` senses: a trimesh, a built-in scene name or a mesh file path."""
@@ -218,6 +218,8 @@ def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,
     Raises
     ------
     InputError (a ValueError) -- bad input, found before any sensing.
+    WorkerDied (a RuntimeError) -- a sensing worker process died (killed, a crash);
+        the other workers are stopped, nothing is returned.
 
     Warns
     -----

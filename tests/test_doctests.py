@@ -31,6 +31,10 @@ MODULES = [
     "core2d.truth.reachability",
     "core2d.truth.metrics",
     "recon3d.io.documents",
+    "recon3d.io.lock",
+    "recon3d.sensing.pool",
+    "recon3d.cli.printing",
+    "recon3d.cli.signals",
 ]
 
 

@@ -4,7 +4,9 @@ one line per error (exit status 2), one line per warning.
 Every user error -- an :class:`recon3d.InputError` from the checks or an
 argparse error -- ends with one line on stderr and exit status 2; no
 traceback. Python warnings print as one line (``recon3d: warning: ...``),
-never with a line of source code.
+never with a line of source code. A sensing worker that died is one line and
+exit status 1; SIGINT, SIGTERM and SIGHUP one line and 128 + the signal
+(:mod:`recon3d.cli.signals`); a closed stdout (``| head``) nothing and 141.
 """
 from __future__ import annotations
 
@@ -14,10 +16,11 @@ import sys
 import warnings
 
 import meshes
-from recon3d.api import __version__
+from recon3d.api import WorkerDied, __version__
 from recon3d.checks import InputError
 from recon3d.cli import batch, bench, run, show
 from recon3d.cli.printing import warn
+from recon3d.cli.signals import closed_stdout, exit_status, interrupted_line, interrupts
 
 __all__ = ["main", "build_parser"]
 
@@ -84,14 +87,22 @@ def main(argv: list[str] | None = None) -> int:
     """Run the command line on ``argv`` (default ``sys.argv[1:]``); the exit status."""
     argv = join_axis_values(list(sys.argv[1:] if argv is None else argv))
     parser = build_parser()
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), interrupts():  # SIGTERM/SIGHUP like SIGINT (.signals)
         warnings.showwarning = _show_warning
         try:
             args = parser.parse_args(argv)
-            return int(args.func(args) or 0)
+            status = int(args.func(args) or 0)
+            sys.stdout.flush()  # a closed stdout shows here, not in the flush at exit
+            return status
         except InputError as exc:
             print(f"recon3d: error: {exc}", file=sys.stderr)
             return 2
-        except KeyboardInterrupt:
-            print("recon3d: interrupted", file=sys.stderr)
-            return 130
+        # -- processes: a worker that died (not the user's input), a signal, stdout closed
+        except WorkerDied as exc:
+            print(f"recon3d: error: {exc}", file=sys.stderr)
+            return 1
+        except KeyboardInterrupt as exc:  # SIGINT, SIGTERM, SIGHUP
+            print(interrupted_line(exc), file=sys.stderr)
+            return exit_status(exc)
+        except BrokenPipeError:
+            return closed_stdout()

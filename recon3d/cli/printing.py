@@ -1,4 +1,5 @@
-"""What the command line prints: one-line warnings and the end-of-run summary of ``recon3d run``."""
+"""What the command line prints: one-line warnings, the estimate of a long run and the
+end-of-run summary of ``recon3d run``."""
 from __future__ import annotations
 
 import sys
@@ -8,7 +9,11 @@ from recon3d.api import Result
 from recon3d.config import diagonal
 from recon3d.records import MeshRun, SliceRun
 
-__all__ = ["warn", "summary_lines", "format_seconds"]
+__all__ = ["warn", "summary_lines", "format_seconds", "projected_seconds", "estimate_note",
+           "LONG_RUN_SECONDS"]
+
+LONG_RUN_SECONDS = 60.0
+"""A run projected to take longer than this (wall seconds) gets an estimate note."""
 
 
 def warn(message: str) -> None:
@@ -32,6 +37,37 @@ def format_seconds(s: float | None) -> str:
     if s < 3600:
         return f"{s / 60:.1f} min"
     return f"{int(s // 3600)} h {int(s % 3600 // 60):02d} min"
+
+
+def projected_seconds(slices: int, first_seconds: float, slice_seconds: float,
+                      jobs: int) -> float:
+    """Wall seconds of sensing ``slices`` slices on ``jobs`` processes: the first wave
+    (one slice per process, with their start-up) in ``first_seconds``, each further
+    slice in ``slice_seconds`` on one process.
+
+    >>> round(projected_seconds(2000, 2.2, 0.4, 2), 1), projected_seconds(3, 10.0, 10.0, 8)
+    (401.8, 10.0)
+    """
+    jobs = max(1, min(jobs, slices))
+    return first_seconds + (slices - jobs) * slice_seconds / jobs
+
+
+def estimate_note(slices: int, first_seconds: float, slice_seconds: float, jobs: int,
+                  longer_than: float = LONG_RUN_SECONDS) -> str | None:
+    """The note printed early in a run that will take long (:func:`projected_seconds`).
+
+    >>> estimate_note(2000, 2.2, 0.4, 2)
+    'about 7 min for 2000 slices (first slice 2.2 s, then 0.40 s a slice, 2 jobs)'
+    >>> estimate_note(24, 2.2, 0.4, 2) is None  # 7 s: no note
+    True
+    """
+    total = projected_seconds(slices, first_seconds, slice_seconds, jobs)
+    if total <= longer_than:
+        return None
+    jobs = max(1, min(jobs, slices))
+    return (f"about {max(1, round(total / 60))} min for {slices} slices (first slice "
+            f"{first_seconds:.1f} s, then {slice_seconds:.2f} s a slice, "
+            f"{jobs} job{'s' if jobs > 1 else ''})")
 
 
 def _num(x, fmt=".4f") -> str:

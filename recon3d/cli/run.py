@@ -3,7 +3,9 @@
 Slice INPUT along one or more axes, run the paper's 2D algorithm on every
 slice against a simulated probe, rebuild a watertight surface and score it
 against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply,
-scene.vtm (+ scene/) and coverage.png.
+scene.vtm (+ scene/) and coverage.png. DIR is locked while the run lasts: a
+second run into it is refused. A long run says about how long it will take
+once its first slices are sensed.
 
 The flags of the run parameters are generated from :data:`recon3d.config.PARAMS`;
 the command's own flags (``--out``, ``--no-png``, ``--quiet``) are here.
@@ -13,14 +15,16 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import time
 
 from tqdm import tqdm
 
 import meshes
 from recon3d.api import execute, load_input
 from recon3d.checks import check_out_dir
-from recon3d.cli.printing import summary_lines, warn
-from recon3d.config import PARAMS, make_config, validate
+from recon3d.cli.printing import estimate_note, summary_lines, warn
+from recon3d.config import PARAMS, default_jobs, make_config, validate
+from recon3d.io.lock import OutputLock
 
 __all__ = ["HELP", "add_arguments", "command", "COMMAND_FLAGS"]
 
@@ -70,19 +74,42 @@ def command(args) -> int:
     mesh, name, notes = load_input(args.input, config.drop_nonfinite)
     notes += validate(mesh, config, spelling="flag")
     check_out_dir(args.out, "--out")
+    with OutputLock(args.out, "--out"):  # a second run into --out is refused from here on
+        result, files = _run(args, config, mesh, name, notes)
+    for note in result.warnings:  # printed once the outputs are complete and --out is free
+        if not args.quiet:
+            print(f"recon3d: note: {note}", file=sys.stderr)
+    print("\n".join(summary_lines(result, files)))
+    return 0
+
+
+def _run(args, config, mesh, name, notes):
+    """Sense, reconstruct, score and write (``--out`` held); the Result and its files."""
     if os.path.exists(args.input) and not args.quiet:  # a file: one-line report (units, scale)
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     for note in notes:
         warn(note)
     per_axis = config.max_slices if config.slices == "auto" else config.slices
-    bar = _progress_bar(per_axis * len(config.axes), name, args.quiet)
+    total = per_axis * len(config.axes)
+    bar = _progress_bar(total, name, args.quiet)
+    jobs = default_jobs() if config.jobs is None else int(config.jobs)
+    # the estimate of a long uniform run (an adaptive one senses fewer, at several eps):
+    # once the first slice (start-up included) and then one slice per worker are done
+    t0, done, need = time.perf_counter(), [], 1 if total <= jobs else jobs + 1
 
     def progress(srun):
-        if bar is not None:
-            bar.update(1)
-            cov = srun.metrics.get("coverage")
-            bar.set_postfix(motions=srun.result.stats.motions,
-                            coverage="n/a" if cov is None else f"{cov:.3f}")
+        if bar is None:
+            return
+        if len(done) < need and config.slices != "auto":
+            done.append(time.perf_counter() - t0)
+            if len(done) == need:
+                note = estimate_note(total, done[0], done[-1] - done[0] or done[0], jobs)
+                if note is not None:
+                    bar.write(f"recon3d: note: {note}", file=sys.stderr)
+        bar.update(1)
+        cov = srun.metrics.get("coverage")
+        bar.set_postfix(motions=srun.result.stats.motions,
+                        coverage="n/a" if cov is None else f"{cov:.3f}")
 
     def stage(what):
         if bar is not None:
@@ -96,8 +123,4 @@ def command(args) -> int:
     finally:
         if bar is not None:
             bar.close()
-    for note in result.warnings:
-        if not args.quiet:
-            print(f"recon3d: note: {note}", file=sys.stderr)
-    print("\n".join(summary_lines(result, files)))
-    return 0
+    return result, files

@@ -1,49 +1,236 @@
-"""Sense the slices of a run, in this process or in parallel processes (internal).
+"""Sense the slices of a run, in this process or in worker processes (internal).
 
 The slices are cut once, in the parent (:func:`recon3d.sensing.mesh.sense_mesh`).
-``jobs == 1`` senses them in this process. Otherwise a
-``ProcessPoolExecutor`` with ``jobs`` workers: forked workers (where the
-platform can fork) inherit the parent's slices through the module-level
-state set before the pool starts -- nothing is cut again and the caller's
-script is not re-imported, so no ``if __name__ == "__main__"`` guard is
-needed; spawned workers (elsewhere) cut them again from the mesh arrays
-(Embree scenes do not pickle). Every path runs the same code on the same
-slices, so the results are identical; they come back in task order
+``jobs == 1`` senses them in this process. Otherwise ``jobs`` worker
+processes, one task at a time each over a pipe of their own: forked workers
+(where the platform can fork) inherit the parent's slices through the
+module-level state set before they start -- nothing is cut again and the
+caller's script is not re-imported, so no ``if __name__ == "__main__"``
+guard is needed; spawned workers (elsewhere) cut them again from the mesh
+arrays (Embree scenes do not pickle). Every path runs the same code on the
+same slices, so the results are identical; they come back in task order
 whatever the completion order.
+
+The workers live no longer than the call:
+
+* they ignore SIGINT and SIGHUP (the parent decides: a Ctrl-C in a terminal
+  reaches the whole process group) and die silently on SIGTERM, so stopping
+  a run prints no worker traceback;
+* on Linux each asks the kernel to SIGKILL it when its parent dies
+  (``prctl(PR_SET_PDEATHSIG)``), so not even a SIGKILLed parent leaves one
+  behind;
+* when the call ends -- done, an error, an interrupt -- the parent stops
+  them and waits for them;
+* a worker that dies (killed, segfault) ends the call with
+  :class:`WorkerDied`, naming the slice it was sensing; no hang.
 """
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import dataclasses
 import multiprocessing
+import os
+import signal
+import sys
+import traceback
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from multiprocessing.connection import wait
 
 import numpy as np
 import trimesh
 
-from recon3d.records import SliceRun
+from recon3d.records import Family, SliceRun
 from recon3d.sensing.worker import SenseSettings, WorkerState
 
-__all__ = ["sense_all"]
+__all__ = ["sense_all", "WorkerDied", "describe_exit"]
 
 _STATE: WorkerState | None = None
 """The slices a worker senses: set in the parent before a fork (inherited), or by
-the initializer of a spawned worker."""
+the initializer of a spawned worker. The only module state: what a worker needs."""
+
+_PR_SET_PDEATHSIG = 1
+_STOP_SECONDS = 5.0
 
 
-def _rebuild(vertices, faces, settings) -> None:
+class WorkerDied(RuntimeError):
+    """A sensing worker process died (killed by a signal, a crash): the run ends.
+
+    Not the user's input (the command line exits with status 1, not 2).
+
+    Attributes
+    ----------
+    exitcode : int or None -- the worker's exit code (``-N``: killed by signal N).
+    slices : list of str -- the slices it was sensing (``'z#3'``), if any.
+    """
+
+    def __init__(self, message: str, exitcode: int | None = None, slices=()):
+        super().__init__(message)
+        self.exitcode = exitcode
+        self.slices = list(slices)
+
+
+class _RemoteTraceback(Exception):
+    """The traceback of an exception raised in a worker (its ``__cause__``)."""
+
+
+def describe_exit(exitcode: int | None) -> str:
+    """How a process ended, from ``multiprocessing.Process.exitcode``.
+
+    >>> describe_exit(-9), describe_exit(3), describe_exit(None)
+    ('killed by SIGKILL', 'exit status 3', 'ended')
+    """
+    if exitcode is None:
+        return "ended"
+    if exitcode < 0:
+        try:
+            return f"killed by {signal.Signals(-exitcode).name}"
+        except ValueError:
+            return f"killed by signal {-exitcode}"
+    return f"exit status {exitcode}"
+
+
+def _die_with_parent(parent: int) -> None:
+    """Quiet on SIGINT/SIGHUP, silent death on SIGTERM, SIGKILLed with the parent (Linux)."""
+    for sig, how in ((signal.SIGINT, signal.SIG_IGN), (signal.SIGTERM, signal.SIG_DFL),
+                     (getattr(signal, "SIGHUP", None), signal.SIG_IGN)):
+        if sig is not None:
+            signal.signal(sig, how)
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    if os.getppid() != parent:  # the parent died before the request took effect
+        os._exit(1)
+
+
+def _worker(conn, parent: int, init, initargs) -> None:
+    """A worker's life: set up, then sense the tasks the parent sends until ``None``."""
     global _STATE
-    _STATE = WorkerState.rebuild(vertices, faces, settings)
+    _die_with_parent(parent)
+    if init is not None:
+        _STATE = init(*initargs)
+    while True:
+        try:
+            task = conn.recv()
+        except EOFError:  # the parent is gone
+            return
+        if task is None:
+            return
+        try:
+            reply = ("ok", _STATE.sense(*task))
+        except Exception as exc:  # sent to the parent, raised there
+            text = "".join(traceback.format_exception(exc))
+            try:
+                conn.send(("error", exc, text))
+            except Exception:  # an exception that does not pickle
+                conn.send(("error", RuntimeError(f"{type(exc).__name__}: {exc}"), text))
+            continue
+        conn.send(reply)
 
 
-def _sense(task):
-    return _STATE.sense(*task)
+def _rebuild(vertices, faces, settings) -> WorkerState:
+    return WorkerState.rebuild(vertices, faces, settings)
 
 
 def _own_contacts(families: list) -> list:
     """The same slices (geometry shared, not cut again) with empty contact caches, so
     the contact models built while sensing go when sensing ends, as in a worker."""
     return [[dataclasses.replace(s) for s in fam] for fam in families]
+
+
+class _Workers:
+    """``jobs`` worker processes, each with its pipe and the task it is sensing."""
+
+    def __init__(self):
+        self.procs, self.conns, self.busy = [], [], []
+
+    def start(self, ctx, jobs: int, init, initargs) -> None:
+        """Start ``jobs`` workers (each one stopped by :meth:`stop` however far this got)."""
+        for _ in range(jobs):
+            here, there = ctx.Pipe()
+            proc = ctx.Process(target=_worker, args=(there, os.getpid(), init, initargs),
+                               daemon=True, name="recon3d-sensing")
+            self.procs.append(proc)
+            self.conns.append(here)
+            self.busy.append(None)
+            proc.start()
+            there.close()
+
+    def send(self, w: int, k: int, task) -> None:
+        self.busy[w] = k
+        try:
+            self.conns[w].send(task)
+        except OSError:  # the worker died: its sentinel says so next
+            pass
+
+    def stop(self, graceful: bool) -> None:
+        """Let idle workers leave (``graceful``) or terminate them; wait for each."""
+        started = [w for w, proc in enumerate(self.procs) if proc.pid is not None]
+        for w in started:
+            proc = self.procs[w]
+            if graceful and proc.is_alive():
+                try:
+                    self.conns[w].send(None)
+                except OSError:
+                    pass
+            elif proc.is_alive():
+                proc.terminate()
+        for w in started:
+            proc = self.procs[w]
+            proc.join(_STOP_SECONDS)
+            if proc.is_alive():
+                proc.kill()
+                proc.join()
+        for conn in self.conns:
+            conn.close()
+
+
+def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left: int):
+    proc = workers.procs[w]
+    proc.join(_STOP_SECONDS)
+    how = describe_exit(proc.exitcode)
+    k = workers.busy[w]
+    if k is None:
+        return WorkerDied(f"a sensing worker died ({how}) between slices; {left} of "
+                          f"{len(tasks)} slices unfinished", proc.exitcode)
+    family, index = tasks[k][:2]
+    name = f"{Family(np.asarray(settings.axes[family])).label}#{index}"
+    return WorkerDied(f"a sensing worker died ({how}) while sensing slice {name}",
+                      proc.exitcode, [name])
+
+
+def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list,
+              progress) -> None:
+    """Hand out the tasks one at a time per worker; collect the results into ``out``."""
+    todo = iter(range(len(tasks)))
+    left = len(tasks)
+    for w in range(len(workers.procs)):
+        k = next(todo, None)
+        if k is not None:
+            workers.send(w, k, tasks[k])
+    while left:
+        ready = wait(workers.conns + [p.sentinel for p in workers.procs])
+        for w, (conn, proc) in enumerate(zip(workers.conns, workers.procs)):
+            if conn not in ready and proc.sentinel not in ready:
+                continue
+            try:
+                reply = conn.recv() if conn.poll() else None
+            except (EOFError, OSError):
+                reply = None
+            if reply is None:
+                if proc.sentinel in ready or not proc.is_alive():
+                    raise _died(workers, w, tasks, settings, left)
+                continue
+            if reply[0] == "error":
+                raise reply[1] from _RemoteTraceback(f'\n"""\n{reply[2]}"""')
+            k, workers.busy[w] = workers.busy[w], None
+            out[k] = reply[1]
+            left -= 1
+            nxt = next(todo, None)
+            if nxt is not None:
+                workers.send(w, nxt, tasks[nxt])
+            if progress is not None:
+                progress(out[k])
 
 
 def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, tasks: list,
@@ -58,6 +245,10 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
     tasks : list of (family, index) or (family, index, eps)
     jobs : int -- worker processes (1: in this process).
     progress : callable(SliceRun) or None -- called as slices finish.
+
+    Raises
+    ------
+    WorkerDied -- a worker process died; the other workers are stopped first.
     """
     global _STATE
     jobs = max(1, min(int(jobs), len(tasks)))
@@ -76,20 +267,12 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
         ctx, init = multiprocessing.get_context("spawn"), _rebuild
         args = (np.asarray(mesh.vertices, dtype=np.float64),
                 np.asarray(mesh.faces, dtype=np.int64), settings)
+    workers, done = _Workers(), False
     try:
-        with ProcessPoolExecutor(jobs, mp_context=ctx, initializer=init,
-                                 initargs=args) as pool:
-            futures = {pool.submit(_sense, task): k for k, task in enumerate(tasks)}
-            try:
-                for fut in as_completed(futures):
-                    k = futures[fut]
-                    out[k] = fut.result()
-                    if progress is not None:
-                        progress(out[k])
-            except BaseException:
-                for fut in futures:
-                    fut.cancel()
-                raise
+        workers.start(ctx, jobs, init, args)
+        _run_pool(workers, tasks, settings, out, progress)
+        done = True
     finally:
         _STATE = None
+        workers.stop(graceful=done)
     return out

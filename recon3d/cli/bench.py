@@ -21,7 +21,7 @@ def add_arguments(p) -> None:
     add_cluster_flags(p, "Dask scheduler address, or 'serial' (this process); default: a "
                       "local cluster")
     p.add_argument("--quick", action="store_true",
-                   help="small sweeps (about 10 minutes on 2 cores)")
+                   help="small sweeps (about 3 minutes on 2 cores)")
     p.add_argument("--parts", default=None,
                    help="comma-separated subset of pareto,backends,baseline,stability")
 

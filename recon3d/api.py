@@ -30,11 +30,12 @@ from recon3d.io.outputs import write_outputs
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
 from recon3d.score.evaluate import contour_cloud, coverage_mesh
-from recon3d.sensing import WorkerDied, sense_mesh
+from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.viz import blocks as scene, plot
 
-__all__ = ["Result", "run", "load_input", "execute", "Source", "WorkerDied", "__version__"]
+__all__ = ["Result", "run", "load_input", "execute", "Source", "WorkerDied", "cold_kernels",
+           "COMPILE_NOTICE", "__version__"]
 
 Source = trimesh.Trimesh | str | os.PathLike
 """What :func:`run` senses: a trimesh, a built-in scene name or a mesh file path."""

@@ -31,6 +31,7 @@ MODULES = [
     "core2d.truth.reachability",
     "core2d.truth.metrics",
     "recon3d.io.documents",
+    "recon3d.viz.plot",
     "recon3d.io.lock",
     "recon3d.sensing.pool",
     "recon3d.cli.printing",

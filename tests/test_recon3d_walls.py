@@ -10,7 +10,9 @@
 * Imports sit at the top of a module unless a comment on that line or the
   line before says why it is lazy; pyvista, matplotlib and VTK are
   imported in one place only, ``recon3d/viz/libs.py``, so ``import recon3d``
-  loads none of them (nor Dask).
+  loads none of them (nor Dask); its public names load on first use
+  (``recon3d.__getattr__``), so ``import recon3d`` loads no trimesh, SciPy
+  or numba either, and the arrows of its name table are checked too.
 """
 import ast
 import pathlib
@@ -149,6 +151,47 @@ def test_import_recon3d_loads_no_plotting_library_and_no_dask():
     code = ("import sys, recon3d, recon3d.cli, recon3d.jobs.batch, recon3d.benchmark.run3d; "
             "print(sorted(m for m in sys.modules if m.split('.')[0] in "
             "('pyvista', 'matplotlib', 'vtk', 'vtkmodules', 'dask', 'distributed')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_import_recon3d_is_light():
+    """``import recon3d`` loads none of the heavy libraries (issue 20: <= 0.5 s; timed in
+    bench/bench_import.py, not here): its public names load on first use (PEP 562)."""
+    code = ("import sys, recon3d; "
+            "print(sorted({m.split('.')[0] for m in sys.modules} & "
+            "{'trimesh', 'scipy', 'numba', 'llvmlite', 'shapely', 'embreex', 'manifold3d', "
+            "'networkx', 'pyvista', 'matplotlib', 'vtk', 'vtkmodules', 'dask', 'distributed', "
+            "'core2d', 'slicer', 'meshes'}))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_the_lazy_public_names_obey_the_walls_and_resolve():
+    """recon3d/__init__.py names its modules in strings (``_PUBLIC``), which the AST walk
+    of the tests above cannot see: the same arrows are checked here, and every name loads."""
+    import recon3d
+
+    for name, mod in recon3d._PUBLIC.items():
+        assert mod in SHARED or any(mod == a or mod.startswith(a + ".")
+                                    for a in ALLOWED["init"]), f"{name} from {mod}"
+        assert getattr(recon3d, name) is getattr(__import__(mod, fromlist=[name]), name)
+    assert sorted(recon3d.__all__) == sorted(recon3d._PUBLIC)
+    assert set(recon3d.__all__) <= set(dir(recon3d))
+    with pytest.raises(AttributeError):
+        recon3d.no_such_name
+
+
+def test_pyvista_without_its_plotting_loads_no_matplotlib():
+    """A ``--no-png`` run uses pyvista's data sets only (flying edges, distances): no
+    matplotlib. (pyvista.plotting itself imports matplotlib.pyplot, so a run that draws
+    coverage.png loads it there; recon3d's own colours are parsed in viz/plot.hex_rgb.)"""
+    code = ("import sys, trimesh; from recon3d.viz import libs, plot; "
+            "import recon3d.surface.solid, recon3d.score.evaluate; "
+            "libs.polydata(trimesh.creation.box()); plot.hex_rgb('#ff7f0e'); "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "[]"

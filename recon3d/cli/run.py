@@ -5,7 +5,8 @@ slice against a simulated probe, rebuild a watertight surface and score it
 against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply,
 scene.vtm (+ scene/) and coverage.png. DIR is locked while the run lasts: a
 second run into it is refused. A long run says about how long it will take
-once its first slices are sensed.
+once its first slices are sensed, and the first run on a machine says first that it
+compiles the sensing kernels (:func:`recon3d.sensing.cold_kernels`).
 
 The flags of the run parameters are generated from :data:`recon3d.config.PARAMS`;
 the command's own flags (``--out``, ``--no-png``, ``--quiet``) are here.
@@ -20,7 +21,7 @@ import time
 from tqdm import tqdm
 
 import meshes
-from recon3d.api import execute, load_input
+from recon3d.api import COMPILE_NOTICE, cold_kernels, execute, load_input
 from recon3d.checks import check_out_dir
 from recon3d.cli.printing import estimate_note, summary_lines, warn
 from recon3d.config import PARAMS, default_jobs, make_config, validate
@@ -89,6 +90,10 @@ def _run(args, config, mesh, name, notes):
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     for note in notes:
         warn(note)
+    # the first run on a machine compiles ~20 s before its first slice (the kernels asked
+    # about are the default Embree backend's; other backends compile only some of them)
+    if not args.quiet and config.backend == "embree" and cold_kernels():
+        print(COMPILE_NOTICE, file=sys.stderr, flush=True)
     per_axis = config.max_slices if config.slices == "auto" else config.slices
     total = per_axis * len(config.axes)
     bar = _progress_bar(total, name, args.quiet)

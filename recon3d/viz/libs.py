@@ -4,7 +4,7 @@ Both load slowly and only some runs need them, so they are imported here,
 lazily, and nowhere else in recon3d: the pictures (:mod:`recon3d.viz`),
 VTK's flying edges (:mod:`recon3d.surface.solid`), VTK's exact distances
 (:mod:`recon3d.score.evaluate`) and the charts of ``recon3d bench``
-(:mod:`recon3d.benchmark.charts`) come through these functions, so
+(:mod:`recon3d.benchmark.charts`, the one user of matplotlib) come through these functions, so
 ``import recon3d`` loads neither.
 """
 from __future__ import annotations
@@ -14,7 +14,7 @@ import types
 import numpy as np
 import trimesh
 
-__all__ = ["pyvista", "polydata", "to_rgb", "pyplot", "ticker"]
+__all__ = ["pyvista", "polydata", "pyplot", "ticker"]
 
 
 def pyvista() -> types.ModuleType:
@@ -28,13 +28,6 @@ def polydata(mesh: trimesh.Trimesh):
     """trimesh -> pyvista.PolyData (geometry only)."""
     return pyvista().PolyData.from_regular_faces(np.asarray(mesh.vertices, dtype=np.float64),
                                                  np.asarray(mesh.faces, dtype=np.int64))
-
-
-def to_rgb(color) -> tuple:
-    """matplotlib's colour name or hex string -> (3,) float RGB in [0, 1]."""
-    from matplotlib.colors import to_rgb as rgb  # lazy: matplotlib is slow to load
-
-    return rgb(color)
 
 
 def pyplot() -> types.ModuleType:

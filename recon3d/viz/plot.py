@@ -19,8 +19,8 @@ import numpy as np
 from recon3d.records import COVERAGE_CLASSES, CURVE_CLASSES, LABELS
 from recon3d.viz import libs
 
-__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "VIEW", "prepare_offscreen",
-           "coverage_plotter", "save_png", "has_display"]
+__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "VIEW", "hex_rgb",
+           "prepare_offscreen", "coverage_plotter", "save_png", "has_display"]
 
 LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#cfcfcf", 5: "#c9a36b"}
 CURVE_COLORS = {1: "#08306b", 2: "#00441b", 3: "#a50f15", 4: "#ff7f0e"}
@@ -69,12 +69,24 @@ def prepare_offscreen() -> None:
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 
+def hex_rgb(color: str) -> tuple[float, float, float]:
+    """``"#rrggbb"`` -> (3,) float RGB in [0, 1], as matplotlib's ``to_rgb`` gives it (without
+    loading matplotlib, which a run that draws no chart does not need).
+
+    >>> hex_rgb("#ff7f00")
+    (1.0, 0.4980392156862745, 0.0)
+    """
+    if len(color) != 7 or color[0] != "#":
+        raise ValueError(f"not a #rrggbb colour: {color!r}")
+    return tuple(int(color[k:k + 2], 16) / 255 for k in (1, 3, 5))
+
+
 def _categorical(plotter, mesh, array, colors, **kwargs):
     """Add ``mesh`` with each cell painted the colour of its integer code in ``array``."""
     codes = np.asarray(mesh.cell_data[array])
     table = np.zeros((max(colors) + 1, 3))
     for code, color in colors.items():
-        table[code] = libs.to_rgb(color)
+        table[code] = hex_rgb(color)
     rgb = (255 * table[np.clip(codes, 0, len(table) - 1)]).astype(np.uint8)
     plotter.add_mesh(mesh, scalars=rgb, rgb=True, preference="cell", **kwargs)
 
@@ -93,7 +105,7 @@ def _swatch(color):
     """A filled square in ``color`` as a legend symbol (vtkPolyData with colours)."""
     pv = libs.pyvista()
     sq = pv.Rectangle([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).triangulate()
-    sq.cell_data["rgb"] = np.tile((255 * np.array(libs.to_rgb(color))).astype(np.uint8),
+    sq.cell_data["rgb"] = np.tile((255 * np.array(hex_rgb(color))).astype(np.uint8),
                                   (sq.n_cells, 1))
     return sq
 

@@ -1,0 +1,90 @@
+"""Are the compiled sensing kernels in numba's cache? (the first run on a machine compiles them).
+
+The sensing runs numba kernels compiled with ``cache=True``: core2d's ray engine, planner
+and visibility, and the Embree ray function of :mod:`slicer.contact.embree_direct`. The
+first run on a machine (or after their source changed) compiles them, about 20 s before
+the first slice, so ``recon3d run`` says so first (:func:`cold_kernels`; the library
+itself prints nothing).
+
+How it knows, without compiling anything: numba keeps one index file per kernel
+(``<module>.<function>-<line>.pyXY.nbi``, next to the source in ``__pycache__`` or under
+``NUMBA_CACHE_DIR``), stamped with the numba version and the source file's time and size;
+each entry is keyed by the signature, the machine (numba's "magic tuple": target triple,
+CPU name and features) and a hash of the function's bytecode. :func:`cold_kernels` reads
+these indexes through numba's own ``FunctionCache`` (the same locator and the same
+staleness rules as a compile) and calls a kernel cold when no entry fits this numba, this
+source, this machine and this bytecode. That is exactly when numba would compile it: no
+timing guess, a few milliseconds once the modules are imported.
+
+Kernels of other paths (``slicer.contact.refine``, used by the batched Embree path and
+the exact backend) are not asked about: they are small, and a default run never compiles
+them, so asking would announce a compile on every run.
+"""
+from __future__ import annotations
+
+import hashlib
+import importlib
+import pkgutil
+
+import core2d
+import numba
+from numba.core.caching import FunctionCache
+from numba.core.dispatcher import Dispatcher
+
+from slicer.contact import embree_direct
+
+__all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_kernels"]
+
+COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 20 s)…"
+"""What ``recon3d run`` prints (stderr, not with ``--quiet``) when :func:`cold_kernels`."""
+
+
+def sensing_kernels() -> dict[str, object]:
+    """``module.function`` -> Python function of every cached kernel a default run compiles
+    (Embree backend; the exact and trimesh backends compile only some of them).
+
+    Every ``cache=True`` dispatcher of core2d (found by importing the core2d modules whose
+    source mentions numba, so a new kernel is seen without a list to keep) and, when Embree
+    loads, the ray function that :mod:`slicer.contact.embree_direct` compiles on first use.
+    """
+    found = {}
+    for info in pkgutil.walk_packages(core2d.__path__, "core2d."):
+        spec = info.module_finder.find_spec(info.name, None)
+        if info.ispkg or spec is None or not spec.origin or not spec.origin.endswith(".py"):
+            continue
+        with open(spec.origin, encoding="utf-8") as fh:
+            if "numba" not in fh.read():
+                continue
+        module = importlib.import_module(info.name)
+        for name, value in vars(module).items():
+            if (isinstance(value, Dispatcher) and value.py_func.__module__ == info.name
+                    and isinstance(value._cache, FunctionCache)):
+                found[f"{info.name}.{name}"] = value.py_func
+    if embree_direct.available():
+        found["slicer.contact.embree_direct._ray"] = embree_direct._ray
+    return found
+
+
+def _cached(py_func, magic: tuple) -> bool:
+    """Does numba's cache hold ``py_func`` compiled for this machine from this source?"""
+    index = FunctionCache(py_func)._cache_file._load_index()  # {} if absent or stale
+    code = hashlib.sha256(py_func.__code__.co_code).hexdigest()
+    return any(key[1] == magic and key[2][0] == code for key in index)
+
+
+def cold_kernels() -> list[str]:
+    """The kernels of :func:`sensing_kernels` that a run would compile (empty: all cached).
+
+    Reads numba's cache indexes only (module docstring); an error reading them counts as
+    cold (the notice is then at worst one line too many).
+    """
+    magic = numba.core.registry.cpu_target.target_context.codegen().magic_tuple()
+    cold = []
+    for name, py_func in sensing_kernels().items():
+        try:
+            ok = _cached(py_func, magic)
+        except Exception:  # noqa: BLE001 - an unreadable index: numba would recompile too
+            ok = False
+        if not ok:
+            cold.append(name)
+    return cold

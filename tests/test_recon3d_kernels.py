@@ -1,0 +1,71 @@
+"""The compile notice of the first run (issue 20): ``recon3d run`` says, once, before the
+~20 s first compile of the numba kernels, that it compiles them; the library prints nothing.
+
+Whether a run will compile is read from numba's cache indexes
+(:func:`recon3d.sensing.cold_kernels`), so the cold case is tested against an empty
+``NUMBA_CACHE_DIR`` without compiling anything.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import recon3d.cli.run
+from recon3d.cli import main
+from recon3d.sensing import COMPILE_NOTICE, cold_kernels
+from recon3d.sensing.kernels import sensing_kernels
+
+
+def test_an_empty_numba_cache_means_every_kernel_is_cold_and_nothing_is_compiled(tmp_path):
+    code = ("import json, time; from recon3d.sensing import cold_kernels; "
+            "from recon3d.sensing.kernels import sensing_kernels; t = time.perf_counter(); "
+            "print(json.dumps([sorted(sensing_kernels()), cold_kernels(), "
+            "time.perf_counter() - t]))")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, check=True)
+    kernels, cold, seconds = json.loads(out.stdout)
+    assert "core2d.sim.kernels.search" in kernels and "core2d.visibility._order" in kernels
+    assert sorted(cold) == kernels
+    assert not list(tmp_path.rglob("*.nbi")) and not list(tmp_path.rglob("*.nbc"))
+    assert seconds < 5  # the cache is read, not filled
+
+
+@pytest.fixture(scope="module")
+def one_run(tmp_path_factory):
+    """A small run through the CLI, in this process (it fills numba's cache if need be)."""
+    out = tmp_path_factory.mktemp("kernels") / "run"
+    assert main(["run", "fig17_pocket", "--out", str(out), "--slices", "2", "--jobs", "1",
+                 "--no-png", "--quiet"]) == 0
+    return out
+
+
+def test_after_a_run_no_kernel_is_cold(one_run):
+    """Else the notice would print on every run (a kernel a default run never compiles)."""
+    assert sensing_kernels()
+    assert cold_kernels() == []
+
+
+@pytest.mark.parametrize("quiet", [False, True])
+def test_the_cli_prints_the_notice_once_when_cold_and_not_with_quiet(one_run, tmp_path,
+                                                                     capsys, monkeypatch,
+                                                                     quiet):
+    monkeypatch.setattr(recon3d.cli.run, "cold_kernels", lambda: ["core2d.sim.kernels.search"])
+    args = ["run", "fig17_pocket", "--out", str(tmp_path / "o"), "--slices", "2",
+            "--jobs", "1", "--no-png"] + (["--quiet"] if quiet else [])
+    assert main(args) == 0
+    err = capsys.readouterr().err
+    assert err.count(COMPILE_NOTICE) == (0 if quiet else 1)
+
+
+def test_warm_cache_no_notice_and_the_library_is_silent(one_run, tmp_path, capsys):
+    import recon3d
+
+    assert main(["run", "fig17_pocket", "--out", str(tmp_path / "o"), "--slices", "2",
+                 "--jobs", "1", "--no-png"]) == 0
+    assert COMPILE_NOTICE not in capsys.readouterr().err
+    recon3d.run("fig17_pocket", slices=2, jobs=1)
+    captured = capsys.readouterr()
+    assert COMPILE_NOTICE not in captured.err + captured.out

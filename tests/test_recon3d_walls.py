@@ -147,13 +147,17 @@ def test_pyvista_and_matplotlib_come_through_viz_libs_only(path):
             assert _module(path) == LIBS, f"{path.relative_to(RECON3D)}:{line} imports {mod}"
 
 
+def _fresh_python(code: str) -> str:
+    """What ``code`` prints in a new interpreter (stripped): what its imports loaded."""
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True).stdout.strip()
+
+
 def test_import_recon3d_loads_no_plotting_library_and_no_dask():
     code = ("import sys, recon3d, recon3d.cli, recon3d.jobs.batch, recon3d.benchmark.run3d; "
             "print(sorted(m for m in sys.modules if m.split('.')[0] in "
             "('pyvista', 'matplotlib', 'vtk', 'vtkmodules', 'dask', 'distributed')))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
-    assert out.stdout.strip() == "[]"
+    assert _fresh_python(code) == "[]"
 
 
 def test_import_recon3d_is_light():
@@ -164,9 +168,7 @@ def test_import_recon3d_is_light():
             "{'trimesh', 'scipy', 'numba', 'llvmlite', 'shapely', 'embreex', 'manifold3d', "
             "'networkx', 'pyvista', 'matplotlib', 'vtk', 'vtkmodules', 'dask', 'distributed', "
             "'core2d', 'slicer', 'meshes'}))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
-    assert out.stdout.strip() == "[]"
+    assert _fresh_python(code) == "[]"
 
 
 def test_the_lazy_public_names_obey_the_walls_and_resolve():
@@ -192,9 +194,7 @@ def test_pyvista_without_its_plotting_loads_no_matplotlib():
             "import recon3d.surface.solid, recon3d.score.evaluate; "
             "libs.polydata(trimesh.creation.box()); plot.hex_rgb('#ff7f0e'); "
             "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
-    assert out.stdout.strip() == "[]"
+    assert _fresh_python(code) == "[]"
 
 
 def test_files_stay_small():

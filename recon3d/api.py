@@ -24,7 +24,8 @@ import trimesh
 import meshes
 from meshes.loading import open_edge_count
 from recon3d.checks import InputError, check_flag, check_out_dir
-from recon3d.config import RunConfig, make_config, numpydoc_params, run_signature, validate
+from recon3d.config import RunConfig, validate
+from recon3d.spellings import make_config, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import write_outputs
 from recon3d.records import MeshRun, SliceRun

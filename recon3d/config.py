@@ -4,23 +4,21 @@ Each field of :class:`RunConfig` carries a :class:`Param` (its public name,
 CLI flag, parser, help text, bounds and README wording). From them come
 
 * the flags of ``recon3d run`` (:func:`recon3d.cli.run` loops over :data:`PARAMS`),
-* the keyword arguments of :func:`recon3d.run` (:func:`make_config`, :func:`run_signature`),
-* the ``[params]`` keys of a batch manifest (:func:`batch_keys`, plus ``eps_share``),
-* their documentation (:func:`options_table`, :func:`numpydoc_params`,
-  :func:`manifest_doc`), and the checks (:func:`validate`).
+* the keywords of :func:`recon3d.run`, the ``[params]`` keys of a batch manifest
+  and their documentation (rendered by :mod:`recon3d.spellings`),
+* and the checks (:func:`validate`).
 
 Defaults that derive from the mesh -- eps, tol, probe length, jobs -- are
 resolved in one place, :func:`resolve`.
 
 >>> [p.flag for p in PARAMS][:3]
 ['--axis', '--slices', '--max-slices']
->>> make_config(slices=4, axis=["z", "x"]).axes
+>>> RunConfig(axes=("z", "x")).axes
 ('z', 'x')
 """
 from __future__ import annotations
 
 import dataclasses
-import inspect
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -35,9 +33,8 @@ from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, I
                             check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
                             check_slices, check_tol, parse_slices, positive, units_note)
 
-__all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "make_config", "validate", "resolve",
-           "diagonal", "default_jobs", "batch_keys", "keyword_defaults", "options_table", "numpydoc_params",
-           "manifest_doc", "run_signature", "BATCH_ONLY", "COARSE"]
+__all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
+           "default_jobs", "COARSE"]
 
 COARSE = 2.0
 """``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
@@ -229,9 +226,6 @@ PARAMS: tuple[Param, ...] = _params()
 
 _BY_KEY = {p.key: p for p in PARAMS}
 
-BATCH_ONLY = {"eps_share": ("eps", "eps as a share of the mesh diagonal (instead of eps in "
-                                   "mesh units)")}
-"""Manifest keys that are not run parameters: key -> (the parameter it sets, meaning)."""
 
 
 def diagonal(mesh: trimesh.Trimesh) -> float:
@@ -247,48 +241,12 @@ def diagonal(mesh: trimesh.Trimesh) -> float:
     return slicer.mesh_scale(mesh.bounds)
 
 
-def batch_keys() -> tuple[str, ...]:
-    """The keys of a manifest's ``[params]``: the run parameters (not jobs) and eps_share."""
-    out = []
-    for p in PARAMS:
-        if p.batch:
-            out.append(p.key)
-            out += [k for k, (target, _) in BATCH_ONLY.items() if target == p.key]
-    return tuple(out)
-
-
 def default_jobs() -> int:
     """Number of cores this process may use (the default of ``jobs``)."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not on Linux
         return max(1, os.cpu_count() or 1)
-
-
-def make_config(**params) -> RunConfig:
-    """A :class:`RunConfig` from :func:`recon3d.run`'s keywords (converted, not yet checked)."""
-    kw = {}
-    for key, value in params.items():
-        p = _BY_KEY.get(key)
-        if p is None:
-            raise TypeError(f"run() got an unexpected keyword argument {key!r}")
-        kw[p.name] = p.convert(value) if p.convert is not None else value
-    return RunConfig(**kw)
-
-
-def keyword_defaults() -> dict:
-    """The defaults of :func:`recon3d.run`'s keywords: key -> value."""
-    fields = {f.name: f.default for f in dataclasses.fields(RunConfig)}
-    return {p.key: fields[p.name] if p.keyword_default is None else p.keyword_default
-            for p in PARAMS}
-
-
-def run_signature(first=(), last=()) -> inspect.Signature:
-    """The signature of :func:`recon3d.run`: ``first``, the parameters (keyword-only), ``last``."""
-    types = {f.name: f.type for f in dataclasses.fields(RunConfig)}
-    kw = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=v, annotation=(
-        _BY_KEY[k].keyword_type or types[_BY_KEY[k].name])) for k, v in keyword_defaults().items()]
-    return inspect.Signature([*first, *kw, *last])
 
 
 @dataclass(frozen=True)
@@ -364,37 +322,3 @@ def validate(mesh: trimesh.Trimesh, config: RunConfig, spelling: str = "key") ->
         check_slice_spacing(getattr(config, count), mesh, config.axes, res.eps,
                             name(_BY_KEY[count]), name(_BY_KEY["force"]))
     return [n for n in notes if n]
-
-
-def options_table(extra=()) -> list[str]:
-    """The README's table of ``recon3d run`` options (Markdown lines).
-
-    extra : list of (option, meaning) -- flags of the command that are not
-        run parameters (``--no-png``, ``--quiet``), appended with no default.
-    """
-    rows = []
-    for p in PARAMS:
-        for row in p.doc:
-            if isinstance(row, str):  # the flag with its metavar, and the default
-                rows.append((f"`{f'{p.flag} {p.metavar}'.strip()}`", p.shown_default, row))
-            else:  # (a value of the flag spelled out, meaning)
-                rows.append((f"`{p.flag} {row[0]}`", "", row[1]))
-    rows += [(option, "", meaning) for option, meaning in extra]
-    return ["| option | default | meaning |", "|---|---|---|"] + [
-        f"| {option} | {default + ' ' if default else ''}| {meaning} |"
-        for option, default, meaning in rows]
-
-
-def numpydoc_params() -> str:
-    """The run parameters as a numpydoc ``Parameters`` block (for :func:`recon3d.run`)."""
-    types = {f.name: f.type for f in dataclasses.fields(RunConfig)}
-    defaults = keyword_defaults()
-    return "\n".join(f"{p.key} : {p.keyword_type or types[p.name]}, default "
-                     f"{defaults[p.key]!r}\n    {p.help}." for p in PARAMS)
-
-
-def manifest_doc() -> str:
-    """The ``[params]`` keys of a batch manifest, in a sentence (``recon3d batch --help``)."""
-    extra = "; ".join(f"{k}: {meaning}" for k, (_, meaning) in BATCH_ONLY.items())
-    return (f"[params] keys: {', '.join(batch_keys())} (the keywords of recon3d.run but jobs; "
-            f"{extra}).")

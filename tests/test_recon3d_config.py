@@ -13,8 +13,8 @@ import recon3d
 from recon3d.checks import InputError
 from recon3d.cli.main import build_parser
 from recon3d.cli.run import COMMAND_FLAGS
-from recon3d.config import (PARAMS, RunConfig, batch_keys, make_config, options_table, resolve,
-                            validate)
+from recon3d.config import PARAMS, RunConfig, resolve, validate
+from recon3d.spellings import batch_keys, make_config, options_table
 from recon3d.jobs.batch import read_manifest
 from recon3d.records import diagonal
 
@@ -104,7 +104,7 @@ def test_mesh_derived_defaults_are_resolved_in_one_place():
 
 
 def test_manifest_doc_names_every_key():
-    from recon3d.config import manifest_doc
+    from recon3d.spellings import manifest_doc
 
     doc = manifest_doc()
     assert all(k in doc for k in batch_keys())

@@ -12,7 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from recon3d.checks import InputError, at_least, check_out_dir
-from recon3d.config import manifest_doc
+from recon3d.spellings import manifest_doc
 from recon3d.io.lock import OutputLock
 from recon3d.jobs.batch import read_manifest, run_job, write_batch
 from recon3d.jobs.cluster import run_tasks

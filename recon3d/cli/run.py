@@ -24,7 +24,8 @@ import meshes
 from recon3d.api import COMPILE_NOTICE, cold_kernels, execute, load_input
 from recon3d.checks import check_out_dir
 from recon3d.cli.printing import estimate_note, summary_lines, warn
-from recon3d.config import PARAMS, default_jobs, make_config, validate
+from recon3d.config import PARAMS, default_jobs, validate
+from recon3d.spellings import make_config
 from recon3d.io.lock import OutputLock
 
 __all__ = ["HELP", "add_arguments", "command", "COMMAND_FLAGS"]

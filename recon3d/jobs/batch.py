@@ -11,9 +11,9 @@ parameter values (a grid)::
     axis = "z"                  # or ["z", "x"] as one value: [["z", "x"]]
     backend = "embree"
 
-The keys of ``[params]`` are :func:`recon3d.config.batch_keys` (the
+The keys of ``[params]`` are :func:`recon3d.spellings.batch_keys` (the
 keywords of :func:`recon3d.run` but ``jobs``, and ``eps_share``;
-:func:`recon3d.config.manifest_doc` names them). Everything is checked
+:func:`recon3d.spellings.manifest_doc` names them). Everything is checked
 before the first run: a bad manifest is one clear error.
 
 Each job is :func:`run_job` (``recon3d.run`` with ``jobs=1``); its outputs
@@ -37,7 +37,8 @@ import numpy as np
 import meshes
 from recon3d.api import Result, execute, load_input
 from recon3d.checks import InputError
-from recon3d.config import BATCH_ONLY, RunConfig, batch_keys, diagonal, make_config, validate
+from recon3d.config import RunConfig, diagonal, validate
+from recon3d.spellings import BATCH_ONLY, batch_keys, make_config
 from recon3d.io.outputs import write_json
 from recon3d.io.ply import write_ply
 from recon3d.io.staged import Staged

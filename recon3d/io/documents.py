@@ -99,14 +99,19 @@ def _slice_metrics(srun: SliceRun, run: MeshRun, position: int) -> dict:
     return out
 
 
-def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> dict:
+def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
+                     unknown_chords: list = ()) -> dict:
     """Per-slice 2D metrics, their totals, the 3D ``total.surface`` block and robot time.
 
     Parameters
     ----------
     run : recon3d.records.MeshRun
     surface : dict or None -- from :func:`recon3d.score.score`.
-    surface_eval : dict -- its explanation (domain, tau, samples, family gains).
+    surface_eval : dict -- its explanation (domain, tau, samples, the shares of
+        the ground truth, each family's own surface).
+    unknown_chords : list of dict -- :func:`recon3d.score.unknowns.unknown_chords`;
+        ``total.unknown_chords`` counts them, ``total.unknown_chord_length`` sums
+        their lengths.
 
     ``robot.probe_speed`` is in mesh units per second (``robot.units``; the
     ``probe_speed`` parameter is in mm/s). With ``--slices auto`` each slice's
@@ -116,6 +121,8 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
     cfg = run.config
     total = dict(run.totals)
     total["surface"] = surface
+    total["unknown_chords"] = len(unknown_chords)
+    total["unknown_chord_length"] = float(sum(c["length"] for c in unknown_chords))
     doc = {
         "mesh": run.name,
         "eps": float(run.eps),
@@ -127,6 +134,7 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
                   "rule": ROBOT_RULE, "units": cfg.units},
         "total": total,
         "surface_eval": surface_eval,
+        "unknown_chords": list(unknown_chords),
         "slices": [_slice_metrics(s, run, k) for fam in run.families
                    for k, s in enumerate(fam.slices)],
     }

@@ -22,7 +22,7 @@ def _scored(entry: dict, surface: dict | None, what: str) -> str:
     """``F@1% a over <what> (s% of the ground truth), r over its reachable part (q%)``."""
     return (f"F@1% {_f1(surface)} over {what} ({percent(entry.get('slab_share'))} of the "
             f"ground truth), {_f1((surface or {}).get('reachable'))} over its reachable part "
-            f"({percent(entry.get('reachable_share'))} of it)")
+            f"({percent(entry.get('reachable_share'))} of the ground truth)")
 
 
 def slicing_text(metrics: dict) -> str:

@@ -27,8 +27,8 @@ from recon3d.records import MeshRun, SliceRun
 __all__ = ["unknown_chords", "CAUSES"]
 
 CAUSES = {"budget": "the slice hit its motion or area budget",
-          "dead end": "passes through the lid found nothing new, and the lid is no "
-                      "provable W3 lid"}
+          "dead end": "no budget hit; no pass through the lid found anything new and "
+                      "the lid is no provable W3 lid"}
 """Why a chord is unknown -> what that means (the module doc)."""
 
 

@@ -45,10 +45,8 @@ class Flow:
     audit: bool = True
 
     def __post_init__(self):
-        if (self.w3_proof or self.audit) and not self.map:
-            raise ValueError("w3_proof and audit need the map")
-        if self.revisit and not (self.defer and self.map):
-            raise ValueError("revisit needs deferral and the map")
+        if (self.w3_proof or self.revisit or self.audit) and not self.map:
+            raise ValueError("w3_proof, revisit and audit need the map")
 
 
 PULLING = Flow()

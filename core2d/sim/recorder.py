@@ -78,12 +78,12 @@ class Recorder:
 
     # ------------------------------------------------------------- motions
     def _do(self, kind, call, *args, torque=0, **kw):
+        # the probe replaces its joint array at each move (never writes into it):
+        # keeping references is keeping the poses
         r = self.robot
         j0, th0 = r.joint, r.theta
         reading = call(*args, **kw)
-        j1 = r.joint
-        self._rows.append((kind, self._phase, self._area, float(j0[0]), float(j0[1]),
-                           float(th0), float(j1[0]), float(j1[1]), float(r.theta), reading,
+        self._rows.append((kind, self._phase, self._area, j0, th0, r.joint, r.theta, reading,
                            torque))
         return reading
 
@@ -116,15 +116,16 @@ class Recorder:
         if not n:
             return MotionLog()
         kind, phase, area = (np.array([r[k] for r in rows]) for k in range(3))
-        before = np.array([r[3:6] for r in rows], dtype=np.float64).reshape(n, 3)
-        after = np.array([r[6:9] for r in rows], dtype=np.float64).reshape(n, 3)
+        before, after = (np.column_stack([np.array([r[k] for r in rows], dtype=np.float64),
+                                          np.array([r[k + 1] for r in rows], dtype=np.float64)])
+                         for k in (3, 5))
         tip = after[:, :2] + L * np.stack([np.cos(after[:, 2]), np.sin(after[:, 2])], axis=1)
         tip_c = np.full((n, 2), math.nan)
         counts = np.zeros(n, dtype=np.int16)
         blocked = np.zeros((n, 2), dtype=bool)
         events, others, start = [], [], [0]
         for k, row in enumerate(rows):
-            reading = row[9]
+            reading = row[7]
             c = reading.tip_contact
             if c is not None:
                 tip_c[k] = c.point
@@ -140,4 +141,4 @@ class Recorder:
             event=np.array(events, dtype="<U12"), before=before, after=after, tip=tip,
             tip_contact=tip_c, contacts=counts, other_start=np.array(start, dtype=np.int64),
             other=np.array(others, dtype=np.float64).reshape(-1, 2), blocked=blocked,
-            torque=np.array([r[10] for r in rows], dtype=np.int8))
+            torque=np.array([r[8] for r in rows], dtype=np.int8))

@@ -34,19 +34,11 @@ COLUMNS = ("family", "slice", "index", "kind", "phase", "area", "event",
 _INT = {"family", "slice", "index", "area", "tip_contact", "contacts", "blocked_ccw",
         "blocked_cw", "torque"}
 _STR = {"kind", "phase", "event", "other_contacts"}
-_FMT = "%.12g"
-
-
-def _num(values) -> list:
-    """Floats as text, NaN as an empty cell."""
-    a = np.asarray(values, dtype=np.float64)
-    out = np.char.mod(_FMT, a).astype(object)
-    out[~np.isfinite(a)] = ""
-    return out.tolist()
+_ROW = ",".join("%d" if c in _INT else "%s" if c in _STR else "%.12g" for c in COLUMNS)
 
 
 def _columns(srun: SliceRun) -> dict | None:
-    """The columns of one slice as lists of cells (None without a log)."""
+    """The columns of one slice as lists (None without a log); NaN marks an empty cell."""
     log = srun.result.motions
     if log is None or not len(log):
         return None
@@ -57,25 +49,23 @@ def _columns(srun: SliceRun) -> dict | None:
     w1 = o + a[:, :1] * u + a[:, 1:2] * v
     wd = np.round(np.cos(a[:, 2:3]) * u + np.sin(a[:, 2:3]) * v, 12) + 0.0  # no -0
     others = [";".join(f"{x:.12g} {y:.12g}" for x, y in log.others(k)) for k in range(n)]
-    ints = lambda x: np.asarray(x).astype(int).astype(str).tolist()  # noqa: E731
-    cols = {"family": [str(int(srun.family))] * n, "slice": [str(int(plane.index))] * n,
-            "index": ints(np.arange(n)), "kind": [KINDS[k] for k in log.kind],
-            "phase": [PHASES[p] for p in log.phase], "area": ints(log.area),
-            "event": log.event.tolist()}
-    for k, name in enumerate(("joint_x0", "joint_y0", "theta0")):
-        cols[name] = _num(b[:, k])
-    for k, name in enumerate(("joint_x1", "joint_y1", "theta1")):
-        cols[name] = _num(a[:, k])
-    cols["tip_x1"], cols["tip_y1"] = _num(log.tip[:, 0]), _num(log.tip[:, 1])
-    cols["tip_contact"] = ints(np.isfinite(log.tip_contact[:, 0]))
-    cols["tip_cx"], cols["tip_cy"] = _num(log.tip_contact[:, 0]), _num(log.tip_contact[:, 1])
-    cols["contacts"], cols["other_contacts"] = ints(log.contacts), others
-    cols["blocked_ccw"], cols["blocked_cw"] = ints(log.blocked[:, 0]), ints(log.blocked[:, 1])
-    cols["torque"] = ints(log.torque)
+    floats = np.column_stack([b, a, log.tip])
+    cols = {"family": [int(srun.family)] * n, "slice": [int(plane.index)] * n,
+            "index": list(range(n)), "kind": [KINDS[k] for k in log.kind],
+            "phase": [PHASES[p] for p in log.phase], "area": log.area.tolist(),
+            "event": log.event.tolist(), "other_contacts": others,
+            "tip_contact": np.isfinite(log.tip_contact[:, 0]).tolist(),
+            "tip_cx": log.tip_contact[:, 0].tolist(), "tip_cy": log.tip_contact[:, 1].tolist(),
+            "contacts": log.contacts.tolist(), "blocked_ccw": log.blocked[:, 0].tolist(),
+            "blocked_cw": log.blocked[:, 1].tolist(), "torque": log.torque.tolist()}
+    names = ("joint_x0", "joint_y0", "theta0", "joint_x1", "joint_y1", "theta1", "tip_x1",
+             "tip_y1")
+    for k, name in enumerate(names):
+        cols[name] = floats[:, k].tolist()
     for pts, names in ((w0, ("wx0", "wy0", "wz0")), (w1, ("wx1", "wy1", "wz1")),
                        (wd, ("wdx1", "wdy1", "wdz1"))):
         for k, name in enumerate(names):
-            cols[name] = _num(pts[:, k])
+            cols[name] = pts[:, k].tolist()
     return cols
 
 
@@ -85,8 +75,9 @@ def motions_text(slices) -> str:
     for srun in slices:
         cols = _columns(srun)
         if cols is not None:
-            lines.extend(",".join(row) for row in zip(*(cols[c] for c in COLUMNS)))
-    return "\n".join(lines) + "\n"
+            lines.extend(_ROW % row for row in zip(*(cols[c] for c in COLUMNS)))
+    # only the float cells can read "nan" (the tip contact point): empty cells
+    return "\n".join(lines).replace(",nan", ",") + "\n"
 
 
 def write_motions(path, slices) -> None:

@@ -49,9 +49,9 @@ def _area_logs(cut, records) -> list:
 def _slice_document(srun: SliceRun) -> dict:
     cut, res = srun.slice, srun.result
     plane = cut.plane
-    segments = [{"class": "W1", "points": _world(cut, w)} for w in res.w1]
-    segments += [{"class": "W2", "points": _world(cut, w)} for w in res.w2]
-    segments += [{"class": "W3", "points": _world(cut, w)} for w in res.w3]
+    at = res.known_at  # the motion after which each piece was recorded
+    segments = [{"class": cls.upper(), "points": _world(cut, w), "motion": int(k)}
+                for cls in ("w1", "w2", "w3") for w, k in zip(getattr(res, cls), at[cls])]
     stats = res.stats.as_dict()
     stats["unknown"] = len(res.unknown)
     return {
@@ -82,6 +82,7 @@ def sensing_document(run: MeshRun) -> dict:
         "tol": float(run.tol),
         "probe_length": float(run.probe_length),
         "backend": run.config.backend,
+        "method": run.config.method,
         "families": _families(run),
         "slices": [_slice_document(s) for s in run.slices],
     }
@@ -127,6 +128,7 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
         "mesh": run.name,
         "eps": float(run.eps),
         "tol": float(run.tol),
+        "method": cfg.method,
         "seconds": float(run.seconds),
         "jobs": int(run.jobs),
         "families": _families(run),

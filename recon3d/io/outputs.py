@@ -13,12 +13,14 @@ import numpy as np
 import trimesh
 
 from recon3d.io import ply
+from recon3d.io.motions import write_motions
 from recon3d.io.staged import Staged
 from recon3d.viz import plot
 
 __all__ = ["OUTPUTS", "write_outputs", "write_json"]
 
-OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png")
+OUTPUTS = ("sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
+           "coverage.png")
 """Files of a complete run (``scene.vtm`` comes with its ``scene/`` folder)."""
 
 
@@ -41,7 +43,7 @@ def _render(blocks, path, title) -> None:
 
 
 def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
-                  title: str = "", png: bool = True) -> list[Path]:
+                  title: str = "", png: bool = True, slices=()) -> list[Path]:
     """Write the outputs of one run into ``out``.
 
     Parameters
@@ -51,6 +53,7 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
     png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc).
+    slices : list of recon3d.records.SliceRun -- their motion logs make ``motions.csv``.
 
     Returns
     -------
@@ -60,6 +63,7 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     with staged as stage:
         write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
         write_json(stage / "metrics.json", metrics)
+        write_motions(stage / "motions.csv", slices)
         ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
                       np.asarray(surface.face_attributes["label"]))
         blocks.save(str(stage / "scene.vtm"))

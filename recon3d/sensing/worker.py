@@ -39,6 +39,7 @@ class SenseSettings:
     eps, tol : float -- the paper's eps and the contact resolution.
     backend : str -- one of ``slicer.BACKENDS`` ('embree', 'exact', 'trimesh').
     max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
+    method : str -- the planner's flow, ``'pulling'`` or ``'paper'``.
     """
 
     axes: tuple
@@ -48,6 +49,7 @@ class SenseSettings:
     backend: str
     max_motions: int
     bootstrap: int
+    method: str = "pulling"
 
     @property
     def metric_tol(self) -> float:
@@ -132,7 +134,8 @@ class WorkerState:
         center, radius = cut.bounding_circle()
         workspace = (np.asarray(center, float), float(radius) + st.eps)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
-                                    max_motions=st.max_motions, bootstrap_count=st.bootstrap)
+                                    max_motions=st.max_motions, bootstrap_count=st.bootstrap,
+                                    method=st.method)
         if not cut.loops or cut.open_chains:
             return SliceRun(None, family, index, result, no_reference_metrics(result, st),
                             workspace, ContourTruth.empty())

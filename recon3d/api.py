@@ -141,10 +141,12 @@ class Result:
         return p
 
     def save(self, out: str | os.PathLike, png: bool = True) -> list[Path]:
-        """Write sensing.json, metrics.json, surface.ply, scene.vtm, coverage.png into ``out``."""
+        """Write sensing.json, metrics.json, surface.ply, scene.vtm, coverage.png and
+        slices.png into ``out`` (``png=False``: neither picture)."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
-                             self.blocks(), title=self.sensing.name, png=png)
+                             self.blocks(), title=self.sensing.name, png=png,
+                             sections=[s.slice.loops for s in self.sensing.slices])
 
 
 def _checked(mesh: trimesh.Trimesh, name: str, drop_nonfinite: bool) -> trimesh.Trimesh:

@@ -12,7 +12,8 @@ import meshes
 from recon3d.cli import main
 from recon3d.io import without_timing
 
-OUTPUTS = {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene", "coverage.png"}
+OUTPUTS = {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene", "coverage.png",
+           "slices.png"}
 
 
 def _cli(*args, cwd=None, env=None):

@@ -62,7 +62,7 @@ def test_saved_files_contract(saved, pocket):
 
     names = {p.name for p in saved.iterdir()}
     assert names == {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene",
-                     "coverage.png"}
+                     "coverage.png", "slices.png"}
     for p in saved.rglob("*"):
         mode = stat.S_IMODE(os.stat(p).st_mode)
         assert mode == (0o755 if p.is_dir() else 0o644), p

@@ -2,6 +2,8 @@
 
 A machine without OpenGL cannot render ``coverage.png``: the other files
 are still written and a ``RuntimeWarning`` says why the picture is missing.
+``slices.png`` (every slice in 2D, :mod:`recon3d.viz.multiples`) needs no
+OpenGL: matplotlib's Agg draws it.
 """
 from __future__ import annotations
 
@@ -15,10 +17,13 @@ import trimesh
 from recon3d.io import ply
 from recon3d.io.staged import Staged
 from recon3d.viz import plot
+from recon3d.viz.multiples import save_multiples
+from recon3d.viz.sliceview import slice_views
 
-__all__ = ["OUTPUTS", "write_outputs", "write_json"]
+__all__ = ["OUTPUTS", "write_outputs", "write_json", "write_slices_png"]
 
-OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png")
+OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png",
+           "slices.png")
 """Files of a complete run (``scene.vtm`` comes with its ``scene/`` folder)."""
 
 
@@ -40,8 +45,24 @@ def _render(blocks, path, title) -> None:
                       f"EGL or a display; --no-png skips it)", RuntimeWarning, stacklevel=3)
 
 
+def write_slices_png(path, sensing: dict, metrics: dict, sections=None, title: str = "") -> None:
+    """Draw ``slices.png``: one small 2D panel per slice (:mod:`recon3d.viz.multiples`).
+
+    sections : list of list of (k, 2) float, optional -- each slice's true section loops,
+        in the order of ``sensing["slices"]`` (slice frame).
+    """
+    loops = {}
+    for doc, sec in zip(sensing["slices"], sections or []):
+        loops[(int(doc["family"]), int(doc["index"]))] = [np.asarray(lp, float) for lp in sec]
+    views = slice_views(sensing, metrics)
+    for view in views:
+        view.section = loops.get((view.family, view.index))
+    method = metrics.get("method", "pulling")
+    save_multiples(views, path, title=f"{title}  ·  method {method}".strip(" ·"))
+
+
 def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
-                  title: str = "", png: bool = True) -> list[Path]:
+                  title: str = "", png: bool = True, sections=None) -> list[Path]:
     """Write the outputs of one run into ``out``.
 
     Parameters
@@ -50,7 +71,9 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     sensing, metrics : dict -- the JSON documents.
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
-    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc).
+    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc) and
+        ``slices.png``.
+    sections : list, optional -- the slices' true section loops (:func:`write_slices_png`).
 
     Returns
     -------
@@ -65,4 +88,5 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
         blocks.save(str(stage / "scene.vtm"))
         if png:
             _render(blocks, stage / "coverage.png", title)
+            write_slices_png(stage / "slices.png", sensing, metrics, sections, title)
     return staged.written

@@ -139,7 +139,7 @@ def nice_length(span: float) -> float:
     (20.0, 1.0)
     """
     target = max(span, 1e-12) / 5
-    power = 10 ** math.floor(math.log10(target))
+    power = 10.0 ** math.floor(math.log10(target))
     return max(m * power for m in (1, 2, 5) if m * power <= target)
 
 

@@ -27,7 +27,7 @@ def grid_shape(count: int, aspect: float) -> tuple[int, int]:
     """(rows, columns) for ``count`` panels of width/height ``aspect`` in a roughly 16:9 block.
 
     >>> grid_shape(8, 2.2), grid_shape(1, 1.0)
-    ((4, 2), (1, 1))
+    ((3, 3), (1, 1))
     """
     cols = max(1, min(count, round(math.sqrt(count * 1.8 / max(aspect, 1e-3)))))
     return math.ceil(count / cols), cols

@@ -146,7 +146,7 @@ class Result:
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
                              self.blocks(), title=self.sensing.name, png=png,
-                             sections=[s.slice.loops for s in self.sensing.slices])
+                             slices=self.slices)
 
 
 def _checked(mesh: trimesh.Trimesh, name: str, drop_nonfinite: bool) -> trimesh.Trimesh:

@@ -45,15 +45,14 @@ def _render(blocks, path, title) -> None:
                       f"EGL or a display; --no-png skips it)", RuntimeWarning, stacklevel=3)
 
 
-def write_slices_png(path, sensing: dict, metrics: dict, sections=None, title: str = "") -> None:
+def write_slices_png(path, sensing: dict, metrics: dict, slices=(), title: str = "") -> None:
     """Draw ``slices.png``: one small 2D panel per slice (:mod:`recon3d.viz.multiples`).
 
-    sections : list of list of (k, 2) float, optional -- each slice's true section loops,
-        in the order of ``sensing["slices"]`` (slice frame).
+    slices : list of recon3d.records.SliceRun -- their reference loops are the true
+        sections drawn in grey (slice frame); none without them.
     """
-    loops = {}
-    for doc, sec in zip(sensing["slices"], sections or []):
-        loops[(int(doc["family"]), int(doc["index"]))] = [np.asarray(lp, float) for lp in sec]
+    loops = {(int(s.family), int(s.index)): [np.asarray(lp, float) for lp in s.slice.loops]
+             for s in slices if s.slice is not None}
     views = slice_views(sensing, metrics)
     for view in views:
         view.section = loops.get((view.family, view.index))
@@ -62,7 +61,7 @@ def write_slices_png(path, sensing: dict, metrics: dict, sections=None, title: s
 
 
 def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
-                  title: str = "", png: bool = True, sections=None) -> list[Path]:
+                  title: str = "", png: bool = True, slices=()) -> list[Path]:
     """Write the outputs of one run into ``out``.
 
     Parameters
@@ -73,7 +72,7 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
     png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc) and
         ``slices.png``.
-    sections : list, optional -- the slices' true section loops (:func:`write_slices_png`).
+    slices : list of recon3d.records.SliceRun -- their true sections go into ``slices.png``.
 
     Returns
     -------
@@ -88,5 +87,5 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
         blocks.save(str(stage / "scene.vtm"))
         if png:
             _render(blocks, stage / "coverage.png", title)
-            write_slices_png(stage / "slices.png", sensing, metrics, sections, title)
+            write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
     return staged.written

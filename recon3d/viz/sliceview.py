@@ -109,6 +109,7 @@ class SliceView:
     coverage : float or None -- reachable coverage (metrics).
     method : str -- ``pulling`` or ``paper``.
     log : MotionLog or None -- the motion log (None: no motions.csv).
+    frame : (origin, u, v) -- the plane's frame in world coordinates, each (3,).
     """
 
     family: int

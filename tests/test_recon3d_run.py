@@ -140,8 +140,9 @@ def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, 
     monkeypatch.setattr(recon3d.viz.plot, "save_png", no_gl)
     with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
         files = pocket.save(out)
+    # slices.png is matplotlib's Agg: it needs no OpenGL
     assert {p.name for p in files} == {"sensing.json", "metrics.json", "surface.ply",
-                                       "scene.vtm", "scene"}
+                                       "scene.vtm", "scene", "slices.png"}
     assert not (out / "coverage.png").exists()
 
 

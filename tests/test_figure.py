@@ -222,6 +222,21 @@ def _toy_view():
                      areas=[], section=[square], motions=12, coverage=1.0)
 
 
+def test_unknown_areas_are_drawn_dotted_only_when_there_are_some():
+    plt = libs.pyplot()
+    view = _toy_view()
+    for lids in ([], [np.array([[0.0, 5.0], [5.0, 10.0]])]):
+        view.unknown = lids
+        fig = figure2d.slice_figure(view, "m", labels=False)
+        ax = fig.axes[0]
+        dotted = [c for c in ax.collections
+                  if c.get_linestyle()[0][1] is not None and len(c.get_segments())]
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert len(dotted) == len(lids)
+        assert any("unknown" in t for t in labels) == bool(lids)
+        plt.close(fig)
+
+
 def test_the_animated_contour_grows_with_the_motion_index():
     plt = libs.pyplot()
     fig, ax = plt.subplots()

@@ -65,10 +65,17 @@ class _Known:
             ax.add_collection(lc)
             self.parts[cls] = (lc, [s.points for s in segs],
                                np.array([s.known_at for s in segs], dtype=np.int64))
+        _, w2, self.w2_when = self.parts["W2"]  # a W2 is shorter than eps: a dot shows it
+        self.w2_at = np.array([p.mean(axis=0) for p in w2]).reshape(-1, 2)
+        self.w2 = ax.scatter([], [], s=9 * scale, c=CLASS_COLORS["W2"], zorder=5, linewidths=0)
+
+    def artists(self) -> list:
+        return [lc for lc, _, _ in self.parts.values()] + [self.w2]
 
     def update(self, motion: int) -> None:
         for lc, pts, when in self.parts.values():
             lc.set_segments([p for p, w in zip(pts, when) if w <= motion])
+        self.w2.set_offsets(self.w2_at[self.w2_when <= motion])
 
 
 class _Frames:
@@ -131,7 +138,7 @@ class _Frames:
 
     def moving(self) -> list:
         """The artists a frame changes (drawn over the static background)."""
-        known = [lc for k in self.known for lc, _, _ in k.parts.values()]
+        known = [a for k in self.known for a in k.artists()]
         return known + [self.trail, self.probe, self.tip, self.lid, self.lid_label, self.path,
                         self.jumps, self.whole, self.joint, self.suptitle]
 

@@ -205,14 +205,18 @@ def draw_joint_path(ax, view: SliceView, upto: int | None = None, arrows: int = 
     return coll
 
 
-def slice_title(view: SliceView, mesh: str = "") -> str:
-    """``mesh . slice z 3 (family 0) . method pulling . 1742 motions . coverage 1.000``."""
+def slice_title(view: SliceView, mesh: str = "", lines: int = 1) -> str:
+    """``mesh . slice z 3 (family 0) . method pulling . 1742 motions . coverage 1.000``
+    (with ``lines=2``, broken after the slice)."""
     cov = "n/a" if view.coverage is None else f"{view.coverage:.3f}"
     parts = [mesh] if mesh else []
     parts += [f"slice {view.axis} {view.position} (family {view.family})",
               f"method {view.method}", f"{view.motions} motions", f"coverage {cov}"]
     if view.log is None:
         parts.append("no motion log")
+    if lines == 2:
+        head = len(parts) - (4 if view.log is None else 3)
+        return "  ·  ".join(parts[:head]) + "\n" + "  ·  ".join(parts[head:])
     return "  ·  ".join(parts)
 
 
@@ -224,7 +228,7 @@ def legend_handles(classes, unknown: bool, section: bool, postures: bool = False
            for c in classes]
     if unknown:
         out.append(lines.Line2D([], [], color=UNKNOWN_COLOR, lw=1.6, ls=(0, (1, 1.5)),
-                                label="unknown A_iB_i"))
+                                label="unknown $A_iB_i$"))
     if section:
         out.append(lines.Line2D([], [], color=SECTION_COLOR, lw=0.8, label="true section"))
     if postures:
@@ -251,9 +255,9 @@ def slice_figure(view: SliceView, mesh: str = "", every: int = 1, labels: bool =
     draw_known(ax, view)
     draw_unknown(ax, view.unknown)
     scale_bar(ax)
-    every_txt = "" if every == 1 else f" (every {every}th)"
-    ax.set_title(f"(a) section: known contour, unknown areas, probe postures{every_txt}",
-                 fontsize=10)
+    postures = "" if not two else (", probe postures" if every == 1 else
+                                   f", probe postures (every {every}th)")
+    ax.set_title(f"(a) section: known contour, unknown areas{postures}", fontsize=10)
     ax.set_xticks([])
     ax.set_yticks([])
     ax.legend(handles=legend_entries(view, two), loc="upper center", fontsize=8, ncol=3,
@@ -266,7 +270,7 @@ def slice_figure(view: SliceView, mesh: str = "", every: int = 1, labels: bool =
         bx.set_yticks([])
         if coll is not None:
             fig.colorbar(coll, ax=bx, fraction=0.046, pad=0.02, label="motion index")
-    fig.suptitle(slice_title(view, mesh), fontsize=11)
+    fig.suptitle(slice_title(view, mesh, lines=1 if two else 2), fontsize=11)
     if labels:
         fig.canvas.draw()  # label extents need the final layout of the axes
         fig.set_layout_engine("none")  # keep that layout while labels are added

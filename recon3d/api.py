@@ -156,8 +156,8 @@ class Result:
         return p
 
     def save(self, out: str | os.PathLike, png: bool = True) -> list[Path]:
-        """Write sensing.json, metrics.json, motions.csv, surface.ply, scene.vtm and
-        coverage.png into ``out``."""
+        """Write sensing.json, metrics.json, motions.csv, surface.ply, scene.vtm,
+        coverage.png and slices.png into ``out`` (``png=False``: neither picture)."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
                              self.blocks(), title=self.sensing.name, png=png,

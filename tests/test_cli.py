@@ -13,7 +13,7 @@ from recon3d.cli import main
 from recon3d.io import without_timing
 
 OUTPUTS = {"sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm", "scene",
-           "coverage.png"}
+           "coverage.png", "slices.png"}
 
 
 def _cli(*args, cwd=None, env=None):

@@ -62,7 +62,7 @@ def test_saved_files_contract(saved, pocket):
 
     names = {p.name for p in saved.iterdir()}
     assert names == {"sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
-                     "scene", "coverage.png"}
+                     "scene", "coverage.png", "slices.png"}
     for p in saved.rglob("*"):
         mode = stat.S_IMODE(os.stat(p).st_mode)
         assert mode == (0o755 if p.is_dir() else 0o644), p
@@ -156,8 +156,9 @@ def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, 
     monkeypatch.setattr(recon3d.viz.plot, "save_png", no_gl)
     with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
         files = pocket.save(out)
+    # slices.png is matplotlib's Agg: it needs no OpenGL
     assert {p.name for p in files} == {"sensing.json", "metrics.json", "motions.csv",
-                                       "surface.ply", "scene.vtm", "scene"}
+                                       "surface.ply", "scene.vtm", "scene", "slices.png"}
     assert not (out / "coverage.png").exists()
 
 

@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 import recon3d
+from recon3d.io.motions import read_log
 from recon3d.io.outputs import write_slices_png
 from recon3d.viz import animate, figure2d, libs, plot, rundata
 
@@ -51,7 +52,7 @@ def _measure(scene: str, slices: int, repeat: int) -> dict:
             tmp / "s.png", doc, res.metrics, res.slices, scene), repeat)
         sensing, views = rundata.read_views(tmp / "run")
         view = rundata.attach_sections(views[len(views) // 2:][:1], sensing, tmp / "run")[0]
-        rundata.attach_log(view, rundata.read_table(tmp / "run" / "motions.csv"))
+        rundata.attach_log(view, read_log(tmp / "run"))
 
         def figure():
             fig = figure2d.slice_figure(view, scene)

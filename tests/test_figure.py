@@ -1,13 +1,11 @@
 """The 2D pictures of a run: ``recon3d figure`` (one slice, its animation) and ``slices.png``.
 
 Runs of fig17_pocket (W1, W2, no W3) and fig18_overhangs (W1, W2, W3: never touching
-areas under the overhangs, the paper's Fig. 18) on two slices. When a run wrote no motion
-log, a small one in the motions.csv schema is written beside it (joint on a circle,
-probe pointing inwards) so the postures, the joint path and the animation have rows.
+areas under the overhangs, the paper's Fig. 18) on two slices, with the motion log each
+run writes (``motions.csv``).
 """
 from __future__ import annotations
 
-import csv
 import json
 import math
 
@@ -16,41 +14,14 @@ import pytest
 
 import recon3d
 from recon3d.cli.main import main
+from recon3d.io.motions import read_log
 from recon3d.viz import animate, figure2d, libs, multiples, rundata
 from recon3d.viz.sliceview import Segment, SliceView, slice_views
-
-COLUMNS = ["family", "slice", "index", "kind", "phase", "area", "event", "joint_x0",
-           "joint_y0", "theta0", "joint_x1", "joint_y1", "theta1", "tip_x1", "tip_y1",
-           "tip_contact", "tip_cx", "tip_cy", "contacts", "other_contacts", "blocked_ccw",
-           "blocked_cw", "torque"]
-
-
-def _write_log(out, motions_per_slice=23):
-    """A motion log in the motions.csv schema for every slice of the run in ``out``."""
-    sensing = json.loads((out / "sensing.json").read_text())
-    L = sensing["probe_length"]
-    rows = []
-    for doc in sensing["slices"]:
-        for i in range(motions_per_slice):
-            a0, a1 = 2 * math.pi * i / motions_per_slice, 2 * math.pi * (i + 1) / motions_per_slice
-            j0, j1 = 0.7 * L * np.array([math.cos(a0), math.sin(a0)]), \
-                0.7 * L * np.array([math.cos(a1), math.sin(a1)])
-            th0, th1 = a0 + math.pi, a1 + math.pi
-            tip = j1 + L * np.array([math.cos(th1), math.sin(th1)])
-            rows.append([doc["family"], doc["index"], i, ("approach", "insert")[i % 2],
-                         "bootstrap", -1, "done", *j0, th0, *j1, th1, *tip, 0, "", "", 0, "",
-                         0, 0, 0])
-    with open(out / "motions.csv", "w", newline="") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(COLUMNS)
-        writer.writerows(rows)
-
 
 def _run(tmp_path_factory, scene, png):
     out = tmp_path_factory.mktemp(scene) / "run"
     recon3d.run(scene, slices=2, jobs=1).save(out, png=png)
-    if not (out / "motions.csv").exists():
-        _write_log(out)
+    assert (out / "motions.csv").is_file()
     return out
 
 
@@ -111,7 +82,7 @@ def test_the_figure_says_when_there_is_no_motion_log(fig17, tmp_path):
     fig = figure2d.slice_figure(view, "m")
     assert len(fig.axes) == 1 and "no motion log" in fig._suptitle.get_text()
     libs.pyplot().close(fig)
-    rundata.attach_log(view, rundata.read_table(fig17 / "motions.csv"))
+    rundata.attach_log(view, read_log(fig17))
     fig = figure2d.slice_figure(view, "m")
     assert len(fig.axes) == 3 and "no motion log" not in fig._suptitle.get_text()  # + colorbar
     libs.pyplot().close(fig)
@@ -199,7 +170,7 @@ def test_the_gif_has_one_frame_per_stride_motions(fig17, tmp_path, stride):
     assert main(["figure", str(fig17), "--slice", "1", "--out", str(gif), "--animate"]
                 + extra) == 0
     _, views = rundata.read_views(fig17)
-    n = len(rundata.attach_log(views[1], rundata.read_table(fig17 / "motions.csv")).log)
+    n = len(rundata.attach_log(views[1], read_log(fig17)).log)
     step = animate.default_stride(n) if stride is None else stride
     with Image.open(gif) as im:
         assert im.n_frames == math.ceil(n / step)

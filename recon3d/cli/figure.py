@@ -19,6 +19,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from recon3d.checks import InputError
+from recon3d.io.motions import read_log
 from recon3d.viz import animate, figure2d, libs, rundata
 
 __all__ = ["HELP", "add_arguments", "command", "FIGURE_SUFFIXES"]
@@ -105,7 +106,7 @@ def command(args) -> int:
     _check_out(out, animate.FORMATS if args.animate else FIGURE_SUFFIXES)
     sensing, views = rundata.read_views(args.dir)
     view = _pick(views, args.family, args.slice)
-    rundata.attach_log(view, rundata.read_table(Path(args.dir) / "motions.csv"))
+    rundata.attach_log(view, read_log(args.dir))
     rundata.attach_sections([view], sensing, args.dir)
     mesh = str(sensing.get("mesh", ""))
     if args.animate:

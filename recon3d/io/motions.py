@@ -17,9 +17,10 @@ from pathlib import Path
 import numpy as np
 
 from core2d.motionlog import KINDS, PHASES
+from recon3d.checks import InputError
 from recon3d.records import SliceRun
 
-__all__ = ["COLUMNS", "FILENAME", "motions_text", "write_motions", "read_motions",
+__all__ = ["COLUMNS", "FILENAME", "motions_text", "write_motions", "read_motions", "read_log",
            "other_points"]
 
 FILENAME = "motions.csv"
@@ -131,3 +132,18 @@ def other_points(cell: str) -> np.ndarray:
     if not cell:
         return np.zeros((0, 2))
     return np.array([[float(t) for t in p.split()] for p in cell.split(";")], dtype=np.float64)
+
+
+def read_log(directory) -> np.ndarray | None:
+    """:func:`read_motions` of ``DIR/motions.csv``, None when the run wrote none.
+
+    Raises :class:`recon3d.checks.InputError` (one line) when the file is unreadable.
+    """
+    path = Path(directory) / FILENAME
+    if not path.is_file():
+        return None
+    try:
+        return read_motions(path)
+    except (OSError, StopIteration, ValueError, csv.Error) as exc:
+        raise InputError(f"cannot read the motion log {path}: {type(exc).__name__}: {exc}") from None
+

@@ -10,7 +10,6 @@ an :class:`recon3d.checks.InputError` (one line).
 """
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
@@ -23,7 +22,7 @@ from recon3d.checks import InputError
 from recon3d.viz import libs
 from recon3d.viz.sliceview import MotionLog, SliceView, slice_views
 
-__all__ = ["read_views", "read_table", "attach_log", "attach_sections", "run_mesh"]
+__all__ = ["read_views", "attach_log", "attach_sections", "run_mesh"]
 
 
 def _read_json(path: Path) -> dict:
@@ -49,28 +48,6 @@ def read_views(run_dir) -> tuple[dict, list[SliceView]]:
     except (KeyError, TypeError, ValueError, IndexError) as exc:
         raise InputError(f"{path / 'sensing.json'} is not a recon3d sensing document "
                          f"({type(exc).__name__}: {exc})") from None
-
-
-def read_table(path) -> dict | None:
-    """``motions.csv`` at ``path`` as {column: (n,) array} (empty cells NaN); None when the
-    file does not exist."""
-    path = Path(path)
-    if not path.is_file():
-        return None
-    try:
-        with open(path, newline="") as fh:
-            reader = csv.reader(fh)
-            header = next(reader)
-            cols = list(zip(*reader)) or [()] * len(header)
-    except (OSError, StopIteration, csv.Error) as exc:
-        raise InputError(f"cannot read the motion log {path}: {type(exc).__name__}") from None
-    out = {}
-    for name, values in zip(header, cols):
-        try:
-            out[name] = np.array([float(x) if x != "" else np.nan for x in values])
-        except ValueError:
-            out[name] = np.array(values, dtype=object)
-    return out
 
 
 def attach_log(view: SliceView, table) -> SliceView:

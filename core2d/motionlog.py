@@ -5,7 +5,7 @@ with the planner's phase (Fig. 16: bootstrap, single probe detection of
 Fig. 6, Theorem 1's initial pass, the bisection of §4.2.2, the tracing of
 §4.3, the escape of §4.4, the revisit of dead ends). Everything is in the
 slice's 2D frame; ``recon3d.io.motions`` maps it to the world and writes
-``motions.csv`` (column contract: MOTIONS_SCHEMA.md).
+``motions.csv`` (its columns: the README, "The motion log").
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``motions.csv``: the motion log of a run, one row per motion (MOTIONS_SCHEMA.md).
+"""``motions.csv``: the motion log of a run, one row per motion (columns in the README).
 
 Each sensed slice carries its :class:`core2d.motionlog.MotionLog` (slice
 frame); this module adds the slice's family and plane index and the world

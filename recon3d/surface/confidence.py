@@ -46,7 +46,7 @@ class ConfidenceSettings:
     cone : bool -- an empty claim between slices counts only inside the 45-degree cones.
     """
 
-    near: float = 8.0
+    near: float = 24.0
     depth: float = 8.0
     unseen: float = 0.03
     floor: float = 0.05

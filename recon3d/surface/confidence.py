@@ -13,12 +13,14 @@ saw. Its confidence ``c`` in (0, 1] says where its field is sensing and where it
   of Area(G_i) = 0), an unknown chord or a bridge, and inside filled holes: the region is
   closed there, not seen.
 * **between two slices** (:func:`between_confidence`): the two slices' maps blended, times
-  ``max(plane proximity, agreement, floor)``: *agreement* = exp(-((v_a - v_b) / 2 step)^2) of
-  the two slices' values at the point (after the warp's alignment, discounted by how far the
-  alignment moved unless the unaligned values agree too), so a family's interpolation across a
-  change of shape barely counts; an *empty* claim between slices counts only inside both
-  slices' 45-degree cones of shown-empty space (:func:`cone`), so no family carves, by
-  interpolation alone, a feature lying between its slices.
+  ``max(plane proximity, agreement x 1 / (1 + (s / proximity)^2), floor)`` with ``s`` the
+  distance to the nearer slice plane: *agreement* = exp(-((v_a - v_b) / 2 step)^2) of the two
+  slices' values at the point (after the warp's alignment, discounted by how far the alignment
+  moved unless the unaligned values agree too). So a family's interpolation across a change of
+  shape barely counts, and between two families' interpolations the one whose slices lie
+  nearer decides. :func:`cone` (an empty claim between slices counted only inside both
+  slices' 45-degree cones) was measured and is off by default (``cone=False``): it also
+  weakens a family's own well-sensed empty space next to a prism's walls.
 """
 from __future__ import annotations
 

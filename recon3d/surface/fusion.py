@@ -11,8 +11,8 @@ agree there. The fused field is
     F(x) = sum_f c_f(x)^p F_f(x) / sum_f c_f(x)^p      (p = ``power``, 2)
 
 with every ``F_f`` clipped to the smallest truncation of the families (a family with wider
-gaps must not outvote the others by magnitude) and ``c_f`` = ``outside`` (1e-6) beyond f's
-slab, where ``F_f`` is its end slice extended. The surface is ``{F > 0}`` cut to the union of
+gaps must not outvote the others by magnitude). Beyond f's slab ``F_f`` is its end slice
+extended, with a weight only near that slice's walls (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of
 the slabs (faces on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
 
 What it means: a hole through the part along the other axis is *seen empty* (weight 1) by the
@@ -44,15 +44,20 @@ __all__ = ["FusionSettings", "world_axes", "resample", "fused_field", "fuse_weig
 
 @dataclass(frozen=True)
 class FusionSettings:
-    """power : float -- weights are c^power; outside : float -- a family's weight beyond its
-    slab; speck : float -- bodies under (speck x step)^3 are dropped; band : float -- every
-    field is clipped to +-band grid steps before the weighting (a confident family near its
-    surface must not be outvoted by another's distance far from its own)."""
+    """Parameters of the weighted fusion (measured in ``bench/bench_surface.py``).
+
+    power : float -- weights are c^power.
+    outside : float -- least weight of a family beyond its slab.
+    speck : float -- bodies under (speck x step)^3 are dropped.
+    extend : float -- beyond its slab a family's end slice counts ``extend`` x its confidence,
+        near its walls only (fading over ``extend_scale`` grid steps inside), falling off as
+        1 / (1 + (s / extend_scale)^2) at ``s`` grid steps beyond: it shapes the walls there,
+        the family that sees the end decides where the part ends.
+    """
 
     power: float = 2.0
     outside: float = 1e-6
     speck: float = 3.0
-    band: float = 1e9
     extend: float = 0.3
     extend_scale: float = 4.0
 
@@ -107,7 +112,8 @@ def resample(ff, pts: np.ndarray, outside: float = 1e-6, extend: float = 0.0,
     Parameters
     ----------
     ff : FamilyField; pts : (n, 3) float.
-    outside : float -- confidence beyond the family's slab.
+    outside, extend, scale : float -- confidence beyond the family's slab
+        (:class:`FusionSettings`).
 
     Returns
     -------
@@ -137,7 +143,7 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
     pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
     num = np.zeros(len(pts))
     den = np.zeros(len(pts))
-    tc = min(min(ff.grid.truncation for ff in fields), settings.band * step)
+    tc = min(ff.grid.truncation for ff in fields)
     for ff in fields:
         v, c = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale)
         wgt = c.astype(np.float64) ** settings.power

@@ -1,24 +1,21 @@
 """Watertight labelled surface from the slice regions of one or more families.
 
-Route: per family, the field of :mod:`recon3d.surface.field` is contoured at 0 with
-VTK flying edges (positive inside) and moved to world coordinates; the
-level set extends one layer beyond the first and last slice.
-``manifold3d`` checks it and makes the solid exact at the slab ends:
-family ``f`` proves empty the part of its slab (the box between its first
-and last slice) outside its level set, ``E_f = slab_f - level_f``, and the
-surface bounds
+Route: per family, the field of :mod:`recon3d.surface.field` (between slices: the aligned
+blend of :mod:`recon3d.surface.warp` by default) is contoured at 0 with VTK flying edges
+(positive inside) and moved to world coordinates; the level set extends one layer beyond
+the first and last slice. ``manifold3d`` checks it; with one family it is cut to the
+**slab** between the first and last slice (flat caps).
 
-    S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)
+Several families are fused by one of two rules (:data:`FUSIONS`):
 
-(``E_f`` is cut from a slightly larger box, half a layer longer at each
-end, so that no face of it is coplanar with a face of the slabs: coplanar
-faces would leave zero-volume sheets.)
-
-With one family this is the level set cut to its slab (flat caps at the
-first and last slice). With several, space shown free by any family is
-free -- the space-carving rule of visual hulls: each family's solid holds
-what it could not see (holes filled, W3 lids over undercuts) -- and each
-family adds the part of the object only its slab reaches.
+* ``'weighted'`` (default, :mod:`recon3d.surface.fusion`) -- a family removes space only
+  where its own sensing shows it empty, never by its interpolation alone, and adds what only
+  it saw: the families' fields averaged with weights from their confidence;
+* ``'carve'`` -- the space carving of visual hulls, kept for comparison: family ``f`` proves
+  empty the part of its slab outside its level set, ``E_f = slab_f - level_f``, and the
+  surface bounds ``S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)`` (``E_f`` cut from a box
+  half a layer longer at each end, so that no face is coplanar with a slab's). A family's
+  interpolation between its slices then carves true material another family saw.
 
 Face labels (:data:`recon3d.records.LABELS`): a face with a vertex on a slice plane takes the
 kind of the nearest sensed piece of that slice (W1 -> 1, W2 -> 2, W3 -> 3;
@@ -39,7 +36,7 @@ from scipy.spatial import cKDTree
 import slicer
 from recon3d.surface.closure import KIND_LABEL, SliceRegion, sample_pieces
 from recon3d.surface.confidence import ConfidenceSettings
-from recon3d.surface.field import FamilyField, family_grid, family_volume
+from recon3d.surface.field import ROUTES, FamilyField, family_grid, family_volume
 from recon3d.surface.fusion import FusionSettings, empty_surface, fuse_weighted, mesh_of
 from recon3d.viz import libs
 
@@ -132,6 +129,8 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     FamilySolid, or None when nothing was sensed.
     """
     pv = libs.pyvista()  # VTK's flying edges contours the field
+    if route not in ROUTES:
+        raise ValueError(f"unknown between-slice route {route!r}; expected one of {ROUTES}")
     order = np.argsort([p.offset for p in planes], kind="stable")
     planes = [planes[i] for i in order]
     regions = [regions[i] for i in order]

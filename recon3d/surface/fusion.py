@@ -135,9 +135,23 @@ def resample(ff, pts: np.ndarray, outside: float = 1e-6, extend: float = 0.0,
     return v, np.where(inslab, c, np.maximum(ext, outside))
 
 
+def _slab_distance(fields, pts: np.ndarray) -> np.ndarray:
+    """(n,) float: signed distance to the union of the families' slabs (positive inside)."""
+    out = np.full(len(pts), -np.inf)
+    for ff in fields:
+        h = pts @ np.asarray(ff.planes[0].normal, dtype=np.float64)
+        out = np.maximum(out, np.minimum(h - ff.grid.heights[0], ff.grid.heights[-1] - h))
+    return out
+
+
 def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
                 ) -> tuple[list[np.ndarray], np.ndarray]:
-    """World grid axes (x, y, z) and the fused field (module doc), shape (nz, ny, nx)."""
+    """World grid axes (x, y, z) and the fused field (module doc), shape (nz, ny, nx).
+
+    The field is cut to the union of the slabs here (``min`` with the slabs' signed
+    distance), so the caps come out of the same contour: no boolean leaves slivers on a
+    slice plane.
+    """
     xs, ys, zs = world_axes(fields, step)
     gz, gy, gx = np.meshgrid(zs, ys, xs, indexing="ij")
     pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
@@ -149,8 +163,8 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
         wgt = c.astype(np.float64) ** settings.power
         num += wgt * np.clip(v, -tc, tc)
         den += wgt
-    fused = num / den
-    small = np.abs(fused) < 1e-3 * step
+    fused = np.minimum(num / den, _slab_distance(fields, pts))
+    small = np.abs(fused) < 1e-3 * step  # keeps level-set vertices apart from grid nodes
     fused[small] = np.copysign(1e-3 * step, fused[small])
     return [xs, ys, zs], fused.reshape(len(zs), len(ys), len(xs))
 
@@ -231,18 +245,18 @@ def fuse_weighted(fields, step: float, settings: FusionSettings = FusionSettings
         face_id=np.arange(len(faces), dtype=np.uint64)))
     if man.status() != manifold3d.Error.NoError:  # pragma: no cover - VTK contours are closed
         raise RuntimeError(f"fused level set is not a manifold: {man.status().name}")
-    oid = int(np.asarray(man.to_mesh64().run_original_id)[0])
     parts = man.decompose()
     if len(parts) > 1:  # specks, and voids no probe from outside can sense
         kept = [p for p in parts if p.volume() >= (settings.speck * step) ** 3]
         man = manifold3d.Manifold.compose(kept) if kept else man
-    lo = np.array([xs[0], ys[0], zs[0]]) - step
-    hi = np.array([xs[-1], ys[-1], zs[-1]]) + step
-    box = manifold3d.Manifold.cube(hi - lo).translate(lo)
-    slabs = []
-    for ff in fields:
-        n = np.asarray(ff.planes[0].normal, dtype=np.float64)
-        h = ff.grid.heights
-        slabs.append(box.trim_by_plane(n, float(h[0])).trim_by_plane(-n, -float(h[-1])))
-    cut = man ^ manifold3d.Manifold.batch_boolean(slabs, manifold3d.OpType.Add)
-    return mesh_of(cut, {oid: labels})
+    out = man.to_mesh64()
+    tri = np.asarray(out.tri_verts, dtype=np.int64)
+    if len(tri) == 0:
+        return empty_surface()
+    verts = np.asarray(out.vert_properties, dtype=np.float64)[:, :3]
+    labels = labels[np.asarray(out.face_id, dtype=np.int64)]
+    on_cut = np.abs(_slab_distance(fields, verts)) < 1e-2 * step
+    labels[on_cut[tri].all(axis=1)] = 5  # the slab ends: caps
+    mesh = trimesh.Trimesh(verts, tri, process=False)
+    mesh.face_attributes["label"] = labels
+    return mesh

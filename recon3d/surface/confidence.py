@@ -49,7 +49,7 @@ class ConfidenceSettings:
     """
 
     near: float = 24.0
-    depth: float = 8.0
+    depth: float = 4.0
     unseen: float = 0.03
     floor: float = 0.05
     proximity: float = 2.0

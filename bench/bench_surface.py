@@ -134,11 +134,14 @@ def _f(v) -> str:
     return "n/a" if v is None else f"{v:.3f}"
 
 
+HEADER = ("| case | surface | slab share | reachable share | F@1% all before | after "
+          "| F@1% reachable before | after | s before | s after |\n"
+          "|---|---|---|---|---|---|---|---|---|---|")
+
+
 def table(rows: list[dict]) -> str:
-    """Markdown: one line per case and family set, before -> after."""
-    out = ["| case | surface | slab share | reachable share | F@1% all before | after "
-           "| F@1% reachable before | after | s before | s after |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+    """Markdown rows: one line per case and family set, before -> after."""
+    out = []
     key = {(r["case"], r["what"], r["when"]): r for r in rows}
     for case in dict.fromkeys(r["case"] for r in rows):
         for what in ("z", "x", "z+x"):
@@ -185,16 +188,19 @@ def main(argv=None) -> int:
           flush=True)
     rows = []
     names = cases(args.cases, args.quick)
+    print(HEADER, flush=True)
     for i, name in enumerate(names, 1):
         t0 = time.perf_counter()
         try:
-            rows += case_rows(name, args.slices, args.jobs, args.cache)
+            new = case_rows(name, args.slices, args.jobs, args.cache)
         except (ValueError, RuntimeError) as err:  # e.g. an open mesh: say so, go on
-            print(f"[{i}/{len(names)}] {name} skipped: {err}", flush=True)
+            print(f"<!-- [{i}/{len(names)}] {name} skipped: {err} -->", flush=True)
             continue
-        print(f"[{i}/{len(names)}] {name} {time.perf_counter() - t0:.0f} s", flush=True)
-    print(table(rows))
-    print(verdicts(rows))
+        rows += new
+        print(table(new), flush=True)
+        print(f"<!-- [{i}/{len(names)}] {name} {time.perf_counter() - t0:.0f} s -->", flush=True)
+    if rows:
+        print(verdicts(rows))
     return 0
 
 

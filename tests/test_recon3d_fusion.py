@@ -115,7 +115,7 @@ def ridge_families():
 
 def test_fusion_keeps_what_one_family_saw_against_the_others_interpolation(ridge_families):
     mesh, z, x = ridge_families
-    peak = np.array([[20.0, 17.0, 10.0]])  # 1 mm under the peak, between two x-slices
+    peak = np.array([[20.0, 17.6, 10.0]])  # 0.4 mm under the peak, between two x-slices
     assert mesh.contains(peak)[0]
     assert fuse([z], mesh.bounds).contains(peak)[0]
     assert not fuse([x], mesh.bounds).contains(peak)[0]  # x's interpolation misses the peak
@@ -125,7 +125,7 @@ def test_fusion_keeps_what_one_family_saw_against_the_others_interpolation(ridge
 
 def _sensed_points(solid, margin):
     """World points on a family's slice planes: shown empty (outside its region, farther than
-    ``margin`` from the boundary) and shown solid (inside, ``margin`` to 2 ``margin`` behind
+    ``margin`` from the boundary) and shown solid (inside, ``margin`` / 2 to ``margin`` behind
     a traced wall)."""
     empty, full = [], []
     inner = slice(1, -1)  # the first and last planes bound the slab: on the cut
@@ -137,14 +137,14 @@ def _sensed_points(solid, margin):
         inside = shapely.contains_xy(region.geometry, g[:, 0], g[:, 1])
         world = plane.origin + np.outer(g[:, 0], plane.u) + np.outer(g[:, 1], plane.v)
         empty.append(world[~inside & (d > margin)])
-        full.append(world[inside & (d > margin) & (d < 2 * margin)])
+        full.append(world[inside & (d > margin / 2) & (d < margin)])
     return np.concatenate(empty), np.concatenate(full)
 
 
 def test_sensed_empty_stays_empty_and_sensed_solid_stays_solid(ridge_families):
     mesh, z, x = ridge_families
     fused = fuse([z, x], mesh.bounds)
-    margin = 4 * 0.25
+    margin = 2 * 0.25  # two grid steps: a traced wall's full confidence reaches that deep
     for solid in (z, x):
         empty, full = _sensed_points(solid, margin)
         assert len(empty) > 100 and len(full) > 100

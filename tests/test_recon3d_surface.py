@@ -22,11 +22,11 @@ def _mesh(man: Manifold) -> trimesh.Trimesh:
                            process=False)
 
 
-def _solid(mesh, axis, count, step):
+def _solid(mesh, axis, count, step, keep=False):
     cuts = slicer.slice_mesh(mesh, axis=axis, count=count)
     regions = [slice_region([np.vstack([lp, lp[:1]]) for lp in c.loops], [], [], [], 1e-9)
                for c in cuts]
-    return family_solid(regions, [c.plane for c in cuts], step), cuts
+    return family_solid(regions, [c.plane for c in cuts], step, keep_field=keep), cuts
 
 
 def _written(tmp_path, surface, name="s.ply"):
@@ -89,12 +89,13 @@ def bored():
                  .translate([20.0, 15.0, -10.0]))
 
 
-def test_families_fuse_carving_what_another_family_sees(tmp_path, bored):
+@pytest.mark.parametrize("rule", ["weighted", "carve"])
+def test_families_fuse_carving_what_another_family_sees(tmp_path, bored, rule):
     step = 0.4
-    z, _ = _solid(bored, "z", 4, step)
-    x, xcuts = _solid(bored, "x", 5, step)
+    z, _ = _solid(bored, "z", 4, step, keep=True)
+    x, xcuts = _solid(bored, "x", 5, step, keep=True)
     only_z = _written(tmp_path, fuse([z], bored.bounds), "z.ply")
-    both = _written(tmp_path, fuse([z, x], bored.bounds), "zx.ply")
+    both = _written(tmp_path, fuse([z, x], bored.bounds, rule), "zx.ply")
     assert only_z.is_watertight and both.is_watertight
     mid = [c for c in xcuts if len(c.loops) == 2][0].plane.offset  # an x-slice through the bore
     in_bore = [[mid, 15.0, 10.0]]
@@ -111,3 +112,10 @@ def test_nothing_sensed_gives_no_solid():
     regions = [slice_region([], [], [], [], 1e-9) for _ in cuts]
     assert family_solid(regions, [c.plane for c in cuts], grid_step(0.05, 3.5)) is None
     assert len(fuse([None]).faces) == 0
+
+
+def test_unknown_route_or_rule_is_one_line_error():
+    with pytest.raises(ValueError, match="route"):
+        family_solid([], [], 0.5, route="spline")
+    with pytest.raises(ValueError, match="fusion rule"):
+        fuse([None], rule="vote")

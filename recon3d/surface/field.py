@@ -5,11 +5,15 @@ distance on a regular grid of the family's frame (positive inside, the
 convention of ``manifold3d.Manifold.level_set``), truncated at +-T with T
 the largest gap between neighbouring slices (and, between two slices, at
 the gap between them: with uneven gaps -- adaptive slicing -- a step in the
-section stays a step). Between two slices the field is
-interpolated linearly along the normal (shape-based interpolation, Herman et
-al. 1992): a loop that keeps its shape makes a straight prism, a loop that
-vanishes tapers off at roughly 45 degrees, loops that split or merge do so
-half-way.
+section stays a step). Between two slices the field is interpolated along the
+normal by one of two routes (:data:`ROUTES`):
+
+* ``'warp'`` (default) -- the two slices aligned first (:mod:`recon3d.surface.warp`):
+  a thin wall that moves more than its thickness from one slice to the next stays a
+  wall, a ring stays a ring;
+* ``'linear'`` -- plain shape-based interpolation (Herman et al. 1992): a loop that keeps
+  its shape makes a straight prism, a loop that vanishes tapers off at roughly 45 degrees,
+  loops that split or merge do so half-way.
 
 The volume is indexed ``[il, iy, ix]`` (so ``ravel()`` is VTK point order):
 ``x = x0 + ix * step`` along ``u``, ``y = y0 + iy * step`` along ``v``, and
@@ -25,7 +29,14 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-__all__ = ["FamilyGrid", "family_grid", "slice_sdf", "family_volume", "grid_step"]
+from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
+                                        seen_map)
+from recon3d.surface.warp import WarpSettings, warp_gap
+
+__all__ = ["ROUTES", "FamilyField", "FamilyGrid", "family_grid", "slice_sdf", "family_volume", "grid_step"]
+
+ROUTES = ("warp", "linear")
+"""Between-slice routes: aligned (:mod:`recon3d.surface.warp`) and plain shape-based."""
 
 #: smallest |value| kept in the field, times the step: keeps level-set
 #: vertices apart from grid nodes (no zero-length edges)
@@ -84,6 +95,24 @@ class FamilyGrid:
         return np.interp(np.asarray(layer, dtype=np.float64), lay, hh)
 
 
+@dataclass(frozen=True)
+class FamilyField:
+    """One family's field, what fusing families needs of it.
+
+    grid : FamilyGrid
+    vol : (layers, ny, nx) float32 -- the field (positive inside).
+    conf : (layers, ny, nx) float32 -- its confidence (:mod:`recon3d.surface.confidence`).
+    planes : tuple of slicer.SlicePlane -- ascending offsets (``planes[0]`` is the frame).
+    regions : tuple of SliceRegion -- the slices' regions, same order.
+    """
+
+    grid: FamilyGrid
+    vol: np.ndarray
+    conf: np.ndarray
+    planes: tuple
+    regions: tuple
+
+
 def grid_step(eps: float, diagonal: float, lo: float = 1 / 400, hi: float = 1 / 100) -> float:
     """In-plane grid step: ``eps`` clipped to ``[lo, hi] x diagonal``.
 
@@ -138,18 +167,60 @@ def slice_sdf(region, grid: FamilyGrid) -> np.ndarray:
     return np.where(inside, d, -d).astype(np.float32)
 
 
-def family_volume(regions, grid: FamilyGrid) -> np.ndarray:
-    """(layers, ny, nx) float32 field of a family (see module doc)."""
+def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bool = False,
+                  warp: WarpSettings = WarpSettings(),
+                  trust: ConfidenceSettings = ConfidenceSettings()
+                  ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The field of a family and, optionally, its confidence (see module doc).
+
+    Parameters
+    ----------
+    regions : list of SliceRegion -- one per slice, ascending heights.
+    grid : FamilyGrid
+    route : {'warp', 'linear'} -- aligned blend (:mod:`recon3d.surface.warp`) or the plain
+        shape-based interpolation.
+    confidence : bool -- also return the confidence (:mod:`recon3d.surface.confidence`).
+
+    Returns
+    -------
+    vol : (layers, ny, nx) float32 -- the field; on a slice layer the slice's own field.
+    conf : (layers, ny, nx) float32 or None -- in (0, 1].
+    """
+    if route not in ROUTES:
+        raise ValueError(f"unknown between-slice route {route!r}; expected one of {ROUTES}")
     nx, ny = grid.shape
-    vol = np.full((grid.layers, ny, nx), -grid.truncation, dtype=np.float32)
     f = [slice_sdf(r, grid).reshape(ny, nx) for r in regions]
-    w = (np.arange(grid.k, dtype=np.float32) / grid.k)[:, None, None]
+    seen = [seen_map(r, fi, grid, trust) for r, fi in zip(regions, f)] if confidence else None
+    vol = np.full((grid.layers, ny, nx), -grid.truncation, dtype=np.float32)
+    conf = np.full(vol.shape, 1e-3, dtype=np.float32) if confidence else None
+    w = np.arange(grid.k, dtype=np.float32) / grid.k
+    w3 = w[:, None, None]
     gaps = np.diff(grid.heights)
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
-        t = np.float32(max(gaps[i], 2 * grid.step))  # per gap: uneven slices keep steps sharp
-        vol[a:a + grid.k] = (1 - w) * np.clip(f[i], -t, t) + w * np.clip(f[i + 1], -t, t)
-    vol[grid.slice_layer(len(f) - 1)] = f[-1]
+        gap = float(gaps[i])
+        t = np.float32(max(gap, 2 * grid.step))  # per gap: uneven slices keep steps sharp
+        fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
+        if route == "warp" and grid.k > 1:
+            val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp)
+        else:
+            val = (1 - w3) * fa + w3 * fb
+            va, vb, move = np.broadcast_to(fa, val.shape), np.broadcast_to(fb, val.shape), None
+        vol[a:a + grid.k] = val
+        vol[a] = f[i]
+        if confidence:
+            ag = agreement(va, vb, grid.step)
+            if move is not None:  # an alignment that moves far is trusted less
+                plaus = np.exp(-0.5 * (move / gap) ** 2)
+                ag = ag * np.maximum(agreement(fa, fb, grid.step), plaus)
+            if trust.cone:
+                ag = cone(ag, va, vb, w3, gap)
+            conf[a:a + grid.k] = between_confidence(seen[i], seen[i + 1], w3, ag, grid, gap,
+                                                    trust)
+    last = grid.slice_layer(len(f) - 1)
+    vol[last] = f[-1]
+    if confidence:
+        conf[last] = seen[-1]
     small = np.abs(vol) < _MIN_VALUE * grid.step  # interpolation can cross 0 exactly
     vol[small] = np.copysign(_MIN_VALUE * grid.step, vol[small])
-    return vol
+    return vol, conf

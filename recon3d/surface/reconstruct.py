@@ -13,7 +13,9 @@ import trimesh
 from recon3d.config import diagonal
 from recon3d.records import MeshRun
 from recon3d.surface.closure import SliceRegion, slice_region
+from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import grid_step
+from recon3d.surface.fusion import FusionSettings
 from recon3d.surface.solid import FamilySolid, family_solid, fuse
 
 __all__ = ["Reconstruction", "reconstruct"]
@@ -28,6 +30,7 @@ class Reconstruction:
     solids : list of FamilySolid or None -- per family (None: no surface).
     step : float -- grid step of the level set.
     notes : list of str -- why a family gave no surface.
+    route : str -- between-slice route; fusion : str -- rule for several families.
     """
 
     surface: trimesh.Trimesh
@@ -35,11 +38,26 @@ class Reconstruction:
     solids: list[FamilySolid | None]
     step: float
     notes: list[str] = field(default_factory=list)
+    route: str = "warp"
+    fusion: str = "weighted"
 
 
-def reconstruct(run: MeshRun) -> Reconstruction:
-    """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`."""
+def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
+                trust: ConfidenceSettings = ConfidenceSettings(),
+                blend: FusionSettings = FusionSettings()) -> Reconstruction:
+    """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`.
+
+    Parameters
+    ----------
+    run : MeshRun
+    route : {'warp', 'linear'} -- between-slice route (:data:`recon3d.surface.field.ROUTES`).
+    fusion : {'weighted', 'carve'} -- rule for several families
+        (:data:`recon3d.surface.solid.FUSIONS`).
+    trust : ConfidenceSettings -- how much each family knows where (weighted fusion).
+    blend : FusionSettings -- parameters of the weighted fusion.
+    """
     step = grid_step(run.eps, diagonal(run.mesh))
+    keep = fusion == "weighted" and len(run.families) > 1
     snap = 2.0 * run.tol
     regions, solids, notes = [], [], []
     for fam in run.families:
@@ -50,9 +68,10 @@ def reconstruct(run: MeshRun) -> Reconstruction:
             solids.append(None)
             notes.append(f"family {fam.label}: a surface needs at least 2 slices")
             continue
-        solid = family_solid(regs, [s.slice.plane for s in fam.slices], step)
+        solid = family_solid(regs, [s.slice.plane for s in fam.slices], step, route, keep,
+                             trust)
         if solid is None:
             notes.append(f"family {fam.label}: nothing sensed, no surface")
         solids.append(solid)
-    surface = fuse(solids, run.mesh.bounds)
-    return Reconstruction(surface, regions, solids, step, notes)
+    surface = fuse(solids, run.mesh.bounds, fusion, blend)
+    return Reconstruction(surface, regions, solids, step, notes, route, fusion)

@@ -1,24 +1,21 @@
 """Watertight labelled surface from the slice regions of one or more families.
 
-Route: per family, the field of :mod:`recon3d.surface.field` is contoured at 0 with
-VTK flying edges (positive inside) and moved to world coordinates; the
-level set extends one layer beyond the first and last slice.
-``manifold3d`` checks it and makes the solid exact at the slab ends:
-family ``f`` proves empty the part of its slab (the box between its first
-and last slice) outside its level set, ``E_f = slab_f - level_f``, and the
-surface bounds
+Route: per family, the field of :mod:`recon3d.surface.field` (between slices: the aligned
+blend of :mod:`recon3d.surface.warp` by default) is contoured at 0 with VTK flying edges
+(positive inside) and moved to world coordinates; the level set extends one layer beyond
+the first and last slice. ``manifold3d`` checks it; with one family it is cut to the
+**slab** between the first and last slice (flat caps).
 
-    S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)
+Several families are fused by one of two rules (:data:`FUSIONS`):
 
-(``E_f`` is cut from a slightly larger box, half a layer longer at each
-end, so that no face of it is coplanar with a face of the slabs: coplanar
-faces would leave zero-volume sheets.)
-
-With one family this is the level set cut to its slab (flat caps at the
-first and last slice). With several, space shown free by any family is
-free -- the space-carving rule of visual hulls: each family's solid holds
-what it could not see (holes filled, W3 lids over undercuts) -- and each
-family adds the part of the object only its slab reaches.
+* ``'weighted'`` (default, :mod:`recon3d.surface.fusion`) -- a family removes space only
+  where its own sensing shows it empty, never by its interpolation alone, and adds what only
+  it saw: the families' fields averaged with weights from their confidence;
+* ``'carve'`` -- the space carving of visual hulls, kept for comparison: family ``f`` proves
+  empty the part of its slab outside its level set, ``E_f = slab_f - level_f``, and the
+  surface bounds ``S = (slab_1 u slab_2 u ...) - (E_1 u E_2 u ...)`` (``E_f`` cut from a box
+  half a layer longer at each end, so that no face is coplanar with a slab's). A family's
+  interpolation between its slices then carves true material another family saw.
 
 Face labels (:data:`recon3d.records.LABELS`): a face with a vertex on a slice plane takes the
 kind of the nearest sensed piece of that slice (W1 -> 1, W2 -> 2, W3 -> 3;
@@ -38,10 +35,16 @@ from scipy.spatial import cKDTree
 
 import slicer
 from recon3d.surface.closure import KIND_LABEL, SliceRegion, sample_pieces
-from recon3d.surface.field import family_grid, family_volume
+from recon3d.surface.confidence import ConfidenceSettings
+from recon3d.surface.field import ROUTES, FamilyField, family_grid, family_volume
+from recon3d.surface.fusion import FusionSettings, empty_surface, fuse_weighted, mesh_of
 from recon3d.viz import libs
 
-__all__ = ["FamilySolid", "family_solid", "fuse", "empty_surface"]
+__all__ = ["FamilySolid", "family_solid", "fuse", "empty_surface", "FUSIONS"]
+
+FUSIONS = ("weighted", "carve")
+"""Rules for several families: confidence-weighted (:mod:`recon3d.surface.fusion`, default)
+or the space carving of visual hulls (module doc)."""
 
 #: margin of the box the slabs are cut from, times the largest extent
 _BOX_MARGIN = 0.05
@@ -56,6 +59,7 @@ class FamilySolid:
     normal : (3,) float -- the family's unit normal.
     slab : (2,) float -- first and last slice offsets along ``normal``.
     overshoot : float -- how far beyond the slab ``E_f`` is cut (half a layer).
+    field : FamilyField or None -- field and confidence, kept for the weighted fusion.
     """
 
     manifold: manifold3d.Manifold
@@ -64,6 +68,7 @@ class FamilySolid:
     normal: np.ndarray
     slab: tuple
     overshoot: float
+    field: FamilyField | None = None
 
 
 def _piece_trees(regions, step):
@@ -105,7 +110,8 @@ def _face_labels(points, faces, grid, regions) -> np.ndarray:
 
 
 def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
-                 step: float) -> FamilySolid | None:
+                 step: float, route: str = "warp", keep_field: bool = False,
+                 trust: ConfidenceSettings = ConfidenceSettings()) -> FamilySolid | None:
     """Level set of one family's field (see module doc).
 
     Parameters
@@ -113,18 +119,24 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     regions : list of SliceRegion -- one per plane.
     planes : list of slicer.SlicePlane -- same family (same frame), >= 2.
     step : float -- grid step (see :func:`recon3d.surface.field.grid_step`).
+    route : {'warp', 'linear'} -- between-slice route (:data:`recon3d.surface.field.ROUTES`).
+    keep_field : bool -- also compute the confidence and keep the field (for the weighted
+        fusion of several families).
+    trust : ConfidenceSettings -- parameters of that confidence.
 
     Returns
     -------
     FamilySolid, or None when nothing was sensed.
     """
     pv = libs.pyvista()  # VTK's flying edges contours the field
+    if route not in ROUTES:
+        raise ValueError(f"unknown between-slice route {route!r}; expected one of {ROUTES}")
     order = np.argsort([p.offset for p in planes], kind="stable")
     planes = [planes[i] for i in order]
     regions = [regions[i] for i in order]
     heights = np.array([p.offset for p in planes])
     grid = family_grid(regions, heights, step)
-    vol = family_volume(regions, grid)
+    vol, conf = family_volume(regions, grid, route, confidence=keep_field, trust=trust)
     img = pv.ImageData(dimensions=(grid.shape[0], grid.shape[1], grid.layers),
                        spacing=(step, step, 1.0), origin=(grid.x0, grid.y0, 0.0))
     img.point_data["f"] = vol.ravel()
@@ -150,14 +162,9 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     oid = int(np.asarray(man.to_mesh64().run_original_id)[0])
     n = np.asarray(p0.normal, dtype=np.float64)
     delta = 0.5 * float(np.diff(heights).min()) / grid.k
-    return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])), delta)
-
-
-def empty_surface() -> trimesh.Trimesh:
-    """A trimesh without faces, with an empty ``label`` face attribute."""
-    mesh = trimesh.Trimesh(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), process=False)
-    mesh.face_attributes["label"] = np.zeros(0, dtype=np.int32)
-    return mesh
+    field = FamilyField(grid, vol, conf, tuple(planes), tuple(regions)) if keep_field else None
+    return FamilySolid(man, oid, labels, n, (float(heights[0]), float(heights[-1])), delta,
+                       field)
 
 
 def _box(solids, bounds, margin: float = _BOX_MARGIN) -> manifold3d.Manifold:
@@ -171,23 +178,37 @@ def _box(solids, bounds, margin: float = _BOX_MARGIN) -> manifold3d.Manifold:
     return manifold3d.Manifold.cube((hi - lo) + 2 * pad).translate(lo - pad)
 
 
-def fuse(solids: list[FamilySolid | None], bounds=None) -> trimesh.Trimesh:
-    """The surface of ``S = union of slabs - union of E_f`` (module doc).
+def fuse(solids: list[FamilySolid | None], bounds=None, rule: str = "weighted",
+         settings: FusionSettings = FusionSettings()) -> trimesh.Trimesh:
+    """The surface of one or more families.
+
+    One family: its level set cut to its slab. Several: ``rule`` -- ``'weighted'``
+    (:func:`recon3d.surface.fusion.fuse_weighted`; needs solids made with ``keep_field``)
+    or ``'carve'``, ``S = union of slabs - union of E_f`` (module doc).
 
     Parameters
     ----------
     solids : list of FamilySolid (None entries are skipped).
     bounds : (2, 3) float, optional -- the ground truth's bounds (the slabs
         are cut from a box around these and the level sets).
+    rule : {'weighted', 'carve'}
+    settings : FusionSettings -- parameters of the weighted fusion.
 
     Returns
     -------
     trimesh.Trimesh -- watertight, float64 vertices,
     ``face_attributes['label']`` (f,) int32; empty when nothing remains.
     """
+    if rule not in FUSIONS:
+        raise ValueError(f"unknown fusion rule {rule!r}; expected one of {FUSIONS}")
     solids = [s for s in solids if s is not None]
     if not solids:
         return empty_surface()
+    if rule == "weighted" and len(solids) > 1:
+        if any(s.field is None for s in solids):
+            raise ValueError("the weighted fusion needs family solids made with keep_field=True")
+        return fuse_weighted([s.field for s in solids], min(s.field.grid.step for s in solids),
+                             settings)
     box = _box(solids, bounds)
     big = _box(solids, bounds, 2 * _BOX_MARGIN)
     slabs, empty = [], []
@@ -198,20 +219,4 @@ def fuse(solids: list[FamilySolid | None], bounds=None) -> trimesh.Trimesh:
     op = manifold3d.OpType
     man = manifold3d.Manifold.batch_boolean(slabs, op.Add) - \
         manifold3d.Manifold.batch_boolean(empty, op.Add)
-    if man.is_empty():
-        return empty_surface()
-    out = man.to_mesh64()
-    tri = np.asarray(out.tri_verts, dtype=np.int64)
-    fid = np.asarray(out.face_id, dtype=np.int64)
-    run = np.asarray(out.run_index, dtype=np.int64) // 3
-    rid = np.asarray(out.run_original_id, dtype=np.int64)
-    labels = np.full(len(tri), 5, dtype=np.int32)
-    owners = {s.original_id: s.labels for s in solids}
-    for k, oid in enumerate(rid):
-        if oid in owners:
-            sl = slice(run[k], run[k + 1])
-            labels[sl] = owners[oid][fid[sl]]
-    verts = np.asarray(out.vert_properties, dtype=np.float64)[:, :3]
-    mesh = trimesh.Trimesh(verts, tri, process=False)
-    mesh.face_attributes["label"] = labels
-    return mesh
+    return mesh_of(man, {s.original_id: s.labels for s in solids})

@@ -1,0 +1,139 @@
+"""How much one slice family knows about each node of its field (for fusing families).
+
+The rule of the fusion (:mod:`recon3d.surface.fusion`): a family removes space only where its
+own sensing shows the space empty, never by its interpolation alone, and adds what only it
+saw. Its confidence ``c`` in (0, 1] says where its field is sensing and where it is filling in:
+
+* **on a slice** (:func:`seen_map`): outside the region, 1 up to ``near`` grid steps from its
+  boundary (space the probe showed empty: a rod swept there, §3.3's free area F grown by the
+  passes), then ``1 / (1 + (d / near - 1)^2)`` (far from every contact, "outside" is a weak
+  claim: an object the planner never found lies outside every region too); inside, 1 up to
+  ``depth / 2`` steps behind a traced wall (W1, W2), ramping to ``unseen`` at ``depth`` steps;
+  ``unseen`` wherever the nearest piece is a W3 lid (the verified never-touching area A_jB_j
+  of Area(G_i) = 0), an unknown chord or a bridge, and inside filled holes: the region is
+  closed there, not seen.
+* **between two slices** (:func:`between_confidence`): the two slices' maps blended, times
+  ``max(plane proximity, agreement x 1 / (1 + (s / proximity)^2), floor)`` with ``s`` the
+  distance to the nearer slice plane: *agreement* = exp(-((v_a - v_b) / 2 step)^2) of the two
+  slices' values at the point (after the warp's alignment, discounted by how far the alignment
+  moved unless the unaligned values agree too). So a family's interpolation across a change of
+  shape barely counts, and between two families' interpolations the one whose slices lie
+  nearer decides. :func:`cone` (an empty claim between slices counted only inside both
+  slices' 45-degree cones) was measured and is off by default (``cone=False``): it also
+  weakens a family's own well-sensed empty space next to a prism's walls.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from recon3d.surface.closure import sample_pieces
+from recon3d.surface.warp import boundary_samples
+
+__all__ = ["ConfidenceSettings", "seen_map", "agreement", "cone", "between_confidence"]
+
+
+@dataclass(frozen=True)
+class ConfidenceSettings:
+    """Parameters of a family's confidence (module doc; grid steps unless said otherwise).
+
+    near : float -- outside a region, full confidence up to this distance from its boundary.
+    depth : float -- inside, behind a traced wall, confidence falls to ``unseen`` by here.
+    unseen : float -- confidence of filled, unseen space (holes, behind lids, bridges).
+    floor : float -- least trust in an interpolation between slices (times the blended map).
+    proximity : float -- between slices, the agreement counts 1 / (1 + (s / proximity)^2) at
+        distance ``s`` from the nearer slice plane (the closer a family's data, the more).
+    cone : bool -- an empty claim between slices counts only inside the 45-degree cones.
+    """
+
+    near: float = 24.0
+    depth: float = 4.0
+    unseen: float = 0.03
+    floor: float = 0.05
+    proximity: float = 2.0
+    cone: bool = False
+
+
+def seen_map(region, f: np.ndarray, grid, settings: ConfidenceSettings = ConfidenceSettings()
+             ) -> np.ndarray:
+    """(ny, nx) float32 confidence of one slice's field ``f`` (module doc, "on a slice").
+
+    Parameters
+    ----------
+    region : SliceRegion -- the slice's closed region with its pieces.
+    f : (ny, nx) float -- its signed distance on ``grid`` (positive inside).
+    grid : FamilyGrid
+    """
+    s = grid.step
+    ny, nx = f.shape
+    inside = f > 0
+    if not inside.any():
+        return np.full(f.shape, 0.1, dtype=np.float32)  # the slice shows nothing: weak
+    nodes = grid.nodes()
+    pb, _ = boundary_samples(f, grid.x0, grid.y0, s)
+    dist = cKDTree(pb).query(nodes)[0].reshape(ny, nx)
+    conf = 1 / (1 + np.maximum(dist / (settings.near * s) - 1, 0) ** 2)
+    depth = settings.depth * s
+    sel = np.flatnonzero(inside.ravel())
+    traced = [p for p in region.pieces if p.kind in ("W1", "W2")]
+    closed = [p for p in region.pieces if p.kind not in ("W1", "W2")]
+    dt = np.full(len(sel), np.inf)
+    if traced:  # depth behind a traced wall (the field itself is truncated)
+        pt, _ = sample_pieces(traced, s / 2)
+        dt, _ = cKDTree(pt).query(nodes[sel], distance_upper_bound=depth)
+    ramp = np.clip(2 - 2 * dt / depth, 0, 1)
+    inner = settings.unseen + (1 - settings.unseen) * ramp
+    if closed:  # behind a lid, an unknown chord or a bridge: closed, not seen
+        pc, _ = sample_pieces(closed, s / 2)
+        dc, _ = cKDTree(pc).query(nodes[sel], distance_upper_bound=depth)
+        inner[dc < dt] = settings.unseen
+    conf = conf.reshape(-1)
+    conf[sel] = inner
+    return conf.reshape(ny, nx).astype(np.float32)
+
+
+def agreement(a: np.ndarray, b: np.ndarray, step: float) -> np.ndarray:
+    """exp(-((a - b) / 2 step)^2), float32, same shape as ``a``: 1 where two slices agree."""
+    return np.exp(-((a - b) / (2 * step)) ** 2).astype(np.float32)
+
+
+def cone(agree: np.ndarray, va: np.ndarray, vb: np.ndarray, w: np.ndarray, gap: float
+         ) -> np.ndarray:
+    """Trust in an *empty* claim between two slices: only inside both slices' 45-degree cones.
+
+    Parameters
+    ----------
+    agree, va, vb : (k, ny, nx) float -- agreement and the two slices' values along the move.
+    w : (k, 1, 1) float -- fraction of the gap (0 on slice a).
+    gap : float
+
+    Returns
+    -------
+    (k, ny, nx) float32 -- ``agree``, capped where both values are negative by
+    ``min(-va / (w gap), -vb / ((1 - w) gap))`` clipped to [0, 1] (1 on a slice).
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.minimum(np.where(w > 0, -va / (w * gap), 1.0),
+                       np.where(w < 1, -vb / ((1 - w) * gap), 1.0))
+    c = np.clip(np.nan_to_num(c, nan=1.0), 0, 1)
+    return np.where((va < 0) & (vb < 0), np.minimum(agree, c), agree).astype(np.float32)
+
+
+def between_confidence(ca, cb, w, agree, grid, gap: float,
+                       settings: ConfidenceSettings = ConfidenceSettings()) -> np.ndarray:
+    """(k, ny, nx) float32 confidence of the layers between two slices (module doc).
+
+    Parameters
+    ----------
+    ca, cb : (ny, nx) float -- the two slices' :func:`seen_map`.
+    w : (k, 1, 1) float -- fraction of the gap of each layer.
+    agree : (k, ny, nx) float -- agreement of the two slices along the move (after :func:`cone`).
+    grid : FamilyGrid; gap : float
+    """
+    dist = np.minimum(w, 1 - w) * gap
+    near = np.clip(1 - dist / (2 * grid.step), 0, 1)
+    prox = 1 / (1 + (dist / (settings.proximity * grid.step)) ** 2)
+    trust = np.maximum(np.maximum(near, agree * prox), settings.floor)
+    return np.maximum(((1 - w) * ca + w * cb) * trust, 1e-3).astype(np.float32)

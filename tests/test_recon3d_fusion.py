@@ -1,0 +1,152 @@
+"""Between-slice surfaces that keep thin walls, and the fusion of families that never loses.
+
+Slice regions are made from the true cross-sections (every loop traced, W1; holes filled by
+the closure as the probe cannot see them), so every difference from the ground truth is the
+reconstruction's. Topology (bodies, genus) is manifold3d's, containment trimesh's.
+"""
+import numpy as np
+import pytest
+import shapely
+import trimesh
+from manifold3d import Manifold, Mesh64
+
+import slicer
+from recon3d.surface.closure import slice_region
+from recon3d.surface.confidence import ConfidenceSettings
+from recon3d.surface.solid import family_solid, fuse
+
+
+def _regions(mesh, axis, count):
+    cuts = slicer.slice_mesh(mesh, axis=axis, count=count)
+    regions = [slice_region([np.vstack([lp, lp[:1]]) for lp in c.loops], [], [], [], 1e-9)
+               for c in cuts]
+    return regions, [c.plane for c in cuts]
+
+
+def _solid(mesh, axis, count, step, route="warp", keep=True, trust=ConfidenceSettings()):
+    regions, planes = _regions(mesh, axis, count)
+    return family_solid(regions, planes, step, route, keep, trust)
+
+
+def _topology(mesh):
+    """(bodies, genus) of a closed surface."""
+    m = Mesh64(vert_properties=np.array(mesh.vertices, dtype=np.float64).view(np.ndarray),
+               tri_verts=np.array(mesh.faces, dtype=np.uint64).view(np.ndarray))
+    m.merge()
+    parts = Manifold(m).decompose()
+    return len(parts), int(sum(p.genus() for p in parts))
+
+
+def _tilted(mesh, degrees):
+    mesh.apply_transform(trimesh.transformations.rotation_matrix(np.radians(degrees), [1, 0, 0]))
+    return mesh
+
+
+@pytest.fixture(scope="module")
+def wall():
+    """A 1 mm slab tilted 45 degrees: with 16 z-slices its section moves ~2.6 x its width."""
+    return _tilted(trimesh.creation.box((60.0, 60.0, 1.0)), 45.0)
+
+
+@pytest.fixture(scope="module")
+def ring():
+    """A thin torus (genus 1) tilted 60 degrees: z-slices cut it in two moving blobs."""
+    return _tilted(trimesh.creation.torus(25.0, 1.5, major_sections=96, minor_sections=16), 60.0)
+
+
+@pytest.mark.parametrize("route, one_wall", [("warp", True), ("linear", False)])
+def test_thin_tilted_wall_sliced_across_stays_one_wall(wall, route, one_wall):
+    surface = fuse([_solid(wall, "z", 16, 0.25, route, keep=False)], wall.bounds)
+    assert surface.is_watertight
+    bodies, genus = _topology(surface)
+    # the truth is one body of genus 0; plain shape-based interpolation breaks it into fins
+    assert ((bodies, genus) == (1, 0)) is one_wall, (bodies, genus)
+
+
+@pytest.mark.parametrize("route, kept", [("warp", True), ("linear", False)])
+def test_thin_tilted_ring_stays_a_ring(ring, route, kept):
+    surface = fuse([_solid(ring, "z", 16, 0.25, route, keep=False)], ring.bounds)
+    assert _topology(surface) == (1, 1)
+    # plain blending bulges the moving blobs between slices; the aligned blend follows them
+    lab = surface.face_attributes["label"]
+    far = np.abs(trimesh.proximity.signed_distance(ring, surface.triangles_center[lab != 5]))
+    assert bool((far > 0.5).mean() < 0.03) is kept  # 0.5: a third of the ring's radius
+
+
+def _block_with_bore():
+    """A 40 x 30 x 20 block with a 10 mm bore along z: z-slices cannot see the bore."""
+    block = trimesh.creation.box((40.0, 30.0, 20.0))
+    bore = trimesh.creation.cylinder(5.0, 40.0, sections=32)
+    return block.difference(bore, engine="manifold")
+
+
+def test_fusion_gains_the_through_hole_only_the_other_axis_sees():
+    mesh = _block_with_bore()
+    z = _solid(mesh, "z", 8, 0.3)
+    x = _solid(mesh, "x", 12, 0.3)
+    assert _topology(fuse([z], mesh.bounds)) == (1, 0)  # z alone: the bore filled
+    fused = fuse([z, x], mesh.bounds)
+    assert fused.is_watertight
+    assert _topology(fused) == (1, 1)  # the bore, seen empty by x, stays open
+    # a family's filled-in space counts as seen: x cannot open the bore against z
+    blind = ConfidenceSettings(unseen=1.0)
+    zb = _solid(mesh, "z", 8, 0.3, trust=blind)
+    xb = _solid(mesh, "x", 12, 0.3, trust=blind)
+    assert _topology(fuse([zb, xb], mesh.bounds)) == (1, 0)
+
+
+def _ridge():
+    """A 40 x 10 block (x, y) with a narrow raised-cosine ridge on top, extruded 20 along z.
+
+    Four x-slices (x = 5, 15, 25, 35) see the ridge only at 2.5 of its 8 mm: its peak
+    (x = 20) lies half-way between two of them. z-slices see the whole profile.
+    """
+    t = np.linspace(0.0, 1.0, 33)
+    bump = np.column_stack([12.0 + 16.0 * t, 10.0 + 4.0 * (1 - np.cos(2 * np.pi * t))])
+    outline = np.vstack([[[0.0, 0.0], [40.0, 0.0], [40.0, 10.0]], bump[::-1], [[0.0, 10.0]]])
+    return trimesh.creation.extrude_polygon(shapely.Polygon(outline), 20.0)
+
+
+@pytest.fixture(scope="module")
+def ridge_families():
+    mesh = _ridge()
+    return mesh, _solid(mesh, "z", 6, 0.25), _solid(mesh, "x", 4, 0.25)
+
+
+def test_fusion_keeps_what_one_family_saw_against_the_others_interpolation(ridge_families):
+    mesh, z, x = ridge_families
+    peak = np.array([[20.0, 17.6, 10.0]])  # 0.4 mm under the peak, between two x-slices
+    assert mesh.contains(peak)[0]
+    assert fuse([z], mesh.bounds).contains(peak)[0]
+    assert not fuse([x], mesh.bounds).contains(peak)[0]  # x's interpolation misses the peak
+    assert not fuse([z, x], mesh.bounds, "carve").contains(peak)[0]  # carving loses it
+    assert fuse([z, x], mesh.bounds).contains(peak)[0]  # the weighted fusion keeps it
+
+
+def _sensed_points(solid, margin):
+    """World points on a family's slice planes: shown empty (outside its region, farther than
+    ``margin`` from the boundary) and shown solid (inside, ``margin`` / 2 to ``margin`` behind
+    a traced wall)."""
+    empty, full = [], []
+    inner = slice(1, -1)  # the first and last planes bound the slab: on the cut
+    for plane, region in zip(solid.field.planes[inner], solid.field.regions[inner]):
+        lo, hi = np.array(region.geometry.bounds[:2]), np.array(region.geometry.bounds[2:])
+        g = np.stack(np.meshgrid(*[np.linspace(a - 4 * margin, b + 4 * margin, 40)
+                                   for a, b in zip(lo, hi)]), axis=-1).reshape(-1, 2)
+        d = shapely.distance(region.geometry.boundary, shapely.points(g))
+        inside = shapely.contains_xy(region.geometry, g[:, 0], g[:, 1])
+        world = plane.origin + np.outer(g[:, 0], plane.u) + np.outer(g[:, 1], plane.v)
+        empty.append(world[~inside & (d > margin)])
+        full.append(world[inside & (d > margin / 2) & (d < margin)])
+    return np.concatenate(empty), np.concatenate(full)
+
+
+def test_sensed_empty_stays_empty_and_sensed_solid_stays_solid(ridge_families):
+    mesh, z, x = ridge_families
+    fused = fuse([z, x], mesh.bounds)
+    margin = 2 * 0.25  # two grid steps: a traced wall's full confidence reaches that deep
+    for solid in (z, x):
+        empty, full = _sensed_points(solid, margin)
+        assert len(empty) > 100 and len(full) > 100
+        assert not fused.contains(empty).any()
+        assert fused.contains(full).all()

@@ -110,3 +110,37 @@ def test_slender_wedge_pockets(depth, apex, tilt, spike):
     assert m["w3_unsound_count"] == 0 and m["w3_cross_loop"] == 0, "a W3 lid hides reachable contour"
     assert 1.0 - m["coverage"] <= 0.005, f"missed share {1 - m['coverage']:.4f}"
     assert m["precision"] >= 0.99
+
+
+def _hops(pl, sign=1.0):
+    """Areas the hop rule registers for one traced polyline (eps = 1)."""
+    from core2d.planner.regions import Posture
+    from core2d.planner.tracing import _split_hops
+    pose = Posture(np.zeros(2), np.array([0.0, -1.0]))
+    new = []
+    out, _ = _split_hops([np.asarray(pl, float)], [(pose, pose)], 0.25, sign, new, False,
+                         0, 1, near=0.1)
+    return new, out
+
+
+def test_hop_at_a_polyline_start_is_read_against_the_wall_after_it():
+    """A trace starting in a slit narrower than eps / 2 steps from one wall
+    onto the other (small turn, but a slit's width off the wall's line):
+    the step is a hop, its stretch an area; a fast slide starting on the
+    wall's line and a convex corner's chord are not."""
+    wall = np.stack([np.zeros(6), np.linspace(0.0, 1.0, 6)], axis=1)  # up the wall, x = 0
+    # material on the left (sign -1): the free side is x > 0
+    new, out = _hops(np.concatenate([[[0.15, -0.45]], wall]), sign=-1.0)
+    assert [a.rule for a in new] == ["hop"] and len(out) == 2
+    new, _ = _hops(np.concatenate([[[0.0, -0.45]], wall]), sign=-1.0)  # on the line
+    assert new == []
+    new, _ = _hops(np.concatenate([[[-0.15, -0.45]], wall]), sign=-1.0)  # material side
+    assert new == []
+
+
+def test_hop_at_a_polyline_end_is_read_against_the_wall_before_it():
+    wall = np.stack([np.zeros(6), np.linspace(0.0, 1.0, 6)], axis=1)
+    new, _ = _hops(np.concatenate([wall, [[0.15, 1.45]]]), sign=-1.0)
+    assert [a.rule for a in new] == ["hop"]
+    new, _ = _hops(np.concatenate([wall, [[-0.15, 1.45]]]), sign=-1.0)
+    assert new == []

@@ -173,8 +173,10 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
     poses.append((first, Posture(probe.joint.copy(), probe.direction)))
     # W1 runs like C_A^B, material on the right: from D_i towards B_i as
     # traced, towards A_i reversed (and so do the postures at its two ends)
+    appended = cases[-1:] == ["case1"] and np.array_equal(polylines[-1][-1], p_fin)
     polylines, poses = _split_hops(polylines, poses, probe.resolution.fan_spacing,
-                                   1.0 if toward_B else -1.0, new, fin_is_A, area.index, depth)
+                                   1.0 if toward_B else -1.0, new, fin_is_A, area.index, depth,
+                                   probe.resolution.near, appended)
     keep = [k for k, p in enumerate(polylines) if len(p) >= 2]
     lines = [polylines[k] if toward_B else polylines[k][::-1] for k in keep]
     ends = [poses[k] if toward_B else poses[k][::-1] for k in keep]
@@ -219,7 +221,16 @@ def _hop_to(pieces, last, p_fin, hop):
     return abs(_turn(last - pts[m], np.asarray(p_fin) - last)) > HOP_TURN
 
 
-def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth):
+def _off_line(origin, direction, point) -> float:
+    """Signed distance of ``point`` from the line through ``origin`` along
+    ``direction`` (positive on its left)."""
+    d = np.asarray(direction, float) / np.hypot(*direction)
+    q = np.asarray(point, float) - origin
+    return float(d[0] * q[1] - d[1] * q[0])
+
+
+def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
+                appended=False):
     """W1 is contour the tip slid along. Cut the traced polylines (in trace
     order; ``sign`` +1 when the material lies on their right, -1 on their
     left) at a step longer than the trace's sampling step ``hop`` (eps / 4,
@@ -242,20 +253,40 @@ def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth):
     other area. A long step that turns convex at both ends is the chord of
     a convex corner (the controller's ``_passes``), a straight one a fast
     slide along a wall: nothing can hide behind them, and they stay W1.
+    A long step at an end of a polyline, where the contour slid along is
+    readable on one side only, is read against that side's line: a hop when
+    its other contact lies on the free side of the line by more than
+    ``near`` (2 tol, the contact noise; :func:`_off_line`). That is the tip
+    of a trace in a slit narrower than eps / 2 stepping from one wall onto
+    the other (both within the same-point radius) with the slit's bottom
+    behind the step: the walls are nearly parallel, so the turn is small,
+    but the step's contact lies a slit's width off the wall's line. A fast
+    slide along a wall lies on its line, a convex corner's chord on the
+    material side. Such an area has Dist < eps / 2 and is W2 at once, so
+    nothing is probed for it; the step onto the P_fin that Case 1 appends
+    (``appended``) is left to :func:`_hop_to`.
     The pieces keep the postures recorded at their polyline's ends (the
     trace keeps none in between); the new areas carry them too.
     """
     out, out_poses = [], []
-    for pl, (pose_first, pose_last) in zip(polylines, poses):
+    for j, (pl, (pose_first, pose_last)) in enumerate(zip(polylines, poses)):
         n = np.hypot(*np.diff(pl, axis=0).T)
+        if appended and j == len(polylines) - 1 and len(n):
+            n[-1] = 0.0  # Case 1's step onto P_fin: decided by _hop_to
         start = 0
         for k in np.flatnonzero(n > hop).tolist():
             before, after = _reach_back(pl, k, -1, hop), _reach_back(pl, k + 1, 1, hop)
-            if before is None or after is None:
-                continue  # the contour slid along on either side is too short to tell
+            if before is None and after is None:
+                continue  # a lone step: no contour slid along on either side
             step = pl[k + 1] - pl[k]
-            turns = (_turn(pl[k] - pl[before], step), _turn(step, pl[after] - pl[k + 1]))
-            if not max(sign * t for t in turns) > HOP_TURN:  # concave: left, material right
+            if before is None:  # concave: the free side is left of a line, material right
+                if not sign * _off_line(pl[k + 1], pl[after] - pl[k + 1], pl[k]) > near:
+                    continue
+            elif after is None:
+                if not sign * _off_line(pl[k], pl[k] - pl[before], pl[k + 1]) > near:
+                    continue
+            elif not max(sign * _turn(pl[k] - pl[before], step),
+                         sign * _turn(step, pl[after] - pl[k + 1])) > HOP_TURN:
                 continue
             out.append(pl[start:k + 1])
             out_poses.append((pose_first, pose_last))

@@ -2,7 +2,9 @@
 
 The robot is told two lengths (§3.2): the paper's epsilon -- the contour is
 smooth at that scale and areas with Dist(A, B) < eps are W2 -- and the
-contact resolution ``tol``. Every other tolerance of the simulator, the
+contact resolution ``tol``; a robot with real sensors is also told their
+data sheet (:class:`core2d.sim.sensor.SensorModel`): the standard deviation
+``noise`` of its contact and joint readings and its ``taxel`` spacing. Every other tolerance of the simulator, the
 planner and the ground truth follows from them here, so that all three rooms
 of core2d agree on what "the same point" means.
 """
@@ -18,6 +20,8 @@ class Resolution:
     """The robot's stated resolution: ``eps`` and ``tol`` and what follows.
 
     Build it with :meth:`of`, which fills in the default ``tol = eps / 20``.
+    ``noise`` and ``taxel`` are the sensor's stated figures (0: the paper's
+    perfect sensing).
 
     Examples
     --------
@@ -28,11 +32,22 @@ class Resolution:
 
     eps: float
     tol: float
+    noise: float = 0.0
+    taxel: float = 0.0
 
     @classmethod
-    def of(cls, eps: float, tol: float | None = None) -> Resolution:
-        """``Resolution(eps, tol)`` with the default contact resolution eps / 20."""
-        return cls(float(eps), float(tol if tol is not None else eps / 20.0))
+    def of(cls, eps: float, tol: float | None = None, noise: float = 0.0,
+           taxel: float = 0.0) -> Resolution:
+        """``Resolution(eps, tol, noise, taxel)`` with the default contact
+        resolution eps / 20."""
+        return cls(float(eps), float(tol if tol is not None else eps / 20.0), float(noise),
+                   float(taxel))
+
+    @property
+    def sensor_tol(self) -> float:
+        """eps / 2 + 2 noise: the distance within which a reported point
+        stands for the contour (the metric tolerance of a noisy sensor)."""
+        return self.eps / 2.0 + 2.0 * self.noise
 
     @property
     def tip_zone(self) -> float:

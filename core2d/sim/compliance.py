@@ -107,7 +107,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     delta0 = res.fan_spacing if delta is None else float(delta)
     stop = None if stop_at is None else np.asarray(stop_at, float)
     leave = None if leave_at is None else np.asarray(leave_at, float)
-    first = probe.sense()
+    first = probe.sense(exact=True)  # the simulator's true start contact
     last = first.tip_contact
     leave_far = leave is not None and last is not None and float(
         np.linalg.norm(last.point - leave)) > res.tip_zone

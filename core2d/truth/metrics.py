@@ -44,11 +44,16 @@ from core2d.result import SliceResult
 
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
 
-__all__ = ["slice_metrics", "total_metrics", "lid_arcs"]
+__all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs"]
 
 _RATIOS = {"coverage": ("covered_length", "reachable_length"),
-           "precision": ("precise_length", "detected_length")}
-_MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol", "spacing")
+           "precision": ("precise_length", "detected_length"),
+           "coverage_sensor": ("covered_length_sensor", "reachable_length"),
+           "precision_sensor": ("precise_length_sensor", "detected_length")}
+_MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol",
+             "spacing", "sensor_tol")
+#: the keys of :func:`slice_metrics` that :func:`sensor_metrics` reports at the sensor's tolerance
+_SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision")
 
 
 def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
@@ -238,6 +243,26 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     return out
 
 
+def sensor_metrics(loops, result: SliceResult, eps: float, noise: float,
+                   spacing: float | None = None, samples=None) -> dict:
+    """Coverage and precision at the tolerance a noisy sensor allows.
+
+    A reading is off by the sensor's noise (standard deviation ``noise``),
+    so a point within eps / 2 + 2 noise of the contour
+    (:attr:`Resolution.sensor_tol <core2d.resolution.Resolution.sensor_tol>`)
+    is as good as the sensor can tell. Returns ``sensor_tol`` and the keys
+    ``covered_length``, ``coverage``, ``precise_length``, ``precision`` of
+    :func:`slice_metrics` at that tolerance, each with the suffix
+    ``_sensor`` (reported beside the noiseless ones). ``spacing`` and
+    ``samples`` as in :func:`slice_metrics` (default spacing eps / 4, the
+    noiseless metrics' sampling).
+    """
+    tol = Resolution.of(eps, noise=noise).sensor_tol
+    spacing = 0.25 * eps if spacing is None else spacing
+    m = slice_metrics(loops, result, eps, tol=tol, spacing=spacing, samples=samples)
+    return {"sensor_tol": tol, **{f"{k}_sensor": m[k] for k in _SENSOR_KEYS}}
+
+
 def total_metrics(metrics: list[dict]) -> dict:
     """Aggregate :func:`slice_metrics` dicts over slices.
 
@@ -270,7 +295,7 @@ def total_metrics(metrics: list[dict]) -> dict:
         elif all(isinstance(v, (int, float, np.number)) and not isinstance(v, bool) for v in vals):
             out[k] = float(sum(vals))
     for k, (num, den) in _RATIOS.items():
-        if num in out or den in out:
+        if num in out or (den in out and not k.endswith("_sensor")):  # _sensor: noisy runs only
             n, d = out.get(num, 0.0), out.get(den, 0.0)
             out[k] = float(n / d) if d > 0 else 1.0
     if "w3_count" in out:

@@ -50,11 +50,36 @@ class Resolution:
         return self.eps / 2.0 + 2.0 * self.noise
 
     @property
+    def jitter(self) -> float:
+        """How far apart two readings of one point may lie: three standard
+        deviations of the difference of two noisy readings (3 sqrt(2) noise)
+        plus one taxel. 0 for the paper's perfect sensing, so every
+        tolerance below is then the paper's own."""
+        return 3.0 * 2.0 ** 0.5 * self.noise + self.taxel
+
+    @property
     def tip_zone(self) -> float:
-        """eps / 2: contacts closer than this are one contact at the paper's
-        resolution (the same-point radius); near the tip they are the tip's
-        contact, and a contact point moving farther in one step jumped."""
-        return self.eps / 2.0
+        """eps / 2 (+ :attr:`jitter`): contacts closer than this are one
+        contact at the paper's resolution (the same-point radius); near the
+        tip they are the tip's contact, and a contact point moving farther in
+        one step jumped. Readings of one point scatter by the jitter, so
+        the radius grows by it: two readings of one contact stay one."""
+        return self.eps / 2.0 + self.jitter
+
+    @property
+    def hop(self) -> float:
+        """eps / 4 (+ :attr:`jitter`): a traced step longer than this is not
+        a micro-step of the trace (a hop, ``core2d.planner.tracing``); the
+        scatter of two noisy readings is no hop."""
+        return self.fan_spacing + self.jitter
+
+    @property
+    def w2_dist(self) -> float:
+        """eps (+ :attr:`jitter`): Dist(A_i, B_i) below which an area is W2
+        (§3.1). Its ends are readings: a gap narrower than eps may read up
+        to the jitter wider. The chord then stays within (eps + jitter) / 2
+        of the contour, about the sensor's tolerance eps / 2 + 2 noise."""
+        return self.eps + self.jitter
 
     @property
     def fan_spacing(self) -> float:
@@ -70,9 +95,9 @@ class Resolution:
 
     @property
     def near(self) -> float:
-        """2 tol: a point this close to the probe or to recorded contour is
-        on it (contact noise)."""
-        return 2 * self.tol
+        """2 tol (+ :attr:`jitter`): a point this close to the probe or to
+        recorded contour is on it (contact noise)."""
+        return 2 * self.tol + self.jitter
 
     @property
     def metric_tol(self) -> float:

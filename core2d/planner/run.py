@@ -186,7 +186,7 @@ class Exploration:
 
     def process(self, area):
         probe, eps = self.probe, self.eps
-        if area.dist < eps:
+        if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
             return self.close(area, "W2", "Dist(A,B) < eps")
         same = self.res.tip_zone
         if self.known.covers(area.a, area.b, same):

@@ -117,7 +117,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
         if r.event == "reached":
             cases.append("case1")
             last = _before_fin(pieces)
-            if last is not None and _hop_to(pieces, last, p_fin, probe.resolution.fan_spacing):
+            if last is not None and _hop_to(pieces, last, p_fin, probe.resolution.hop):
                 pieces[-1] = pieces[-1][:-1]  # P_fin was passed, not slid over
                 new.append(register(last, pose1, p_fin, pose_fin, fin_is_A, area.index,
                                     "hop", depth))
@@ -174,7 +174,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
     # W1 runs like C_A^B, material on the right: from D_i towards B_i as
     # traced, towards A_i reversed (and so do the postures at its two ends)
     appended = cases[-1:] == ["case1"] and np.array_equal(polylines[-1][-1], p_fin)
-    polylines, poses = _split_hops(polylines, poses, probe.resolution.fan_spacing,
+    polylines, poses = _split_hops(polylines, poses, probe.resolution.hop,
                                    1.0 if toward_B else -1.0, new, fin_is_A, area.index, depth,
                                    probe.resolution.near, appended)
     keep = [k for k, p in enumerate(polylines) if len(p) >= 2]

@@ -101,7 +101,7 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     Reading with ``event`` and the recorded tip ``trace``.
     """
     probe._motion()
-    res = probe.resolution
+    res = probe.exact
     v = np.asarray(v, float) / np.linalg.norm(v)
     rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
     delta0 = res.fan_spacing if delta is None else float(delta)
@@ -129,7 +129,7 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
     step, primary contact or None)``, event a :class:`TraceEvent`. ``leave``
     is given only when the trace starts farther than the tip zone from it.
     """
-    engine, stats, res = probe.engine, probe.stats, probe.resolution
+    engine, stats, res = probe.engine, probe.stats, probe.exact
     vx, vy = float(v[0]), float(v[1])
     dmin = res.stop_short
     jump = res.tip_zone

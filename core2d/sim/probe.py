@@ -67,7 +67,11 @@ class Probe:
         self.center = np.asarray(workspace[0], dtype=np.float64)
         self.radius = float(workspace[1])
         model = sensor if sensor is not None else SensorModel()
-        self.resolution = res = Resolution.of(eps, tol, model.noise, model.taxel)
+        # the robot's stated resolution (the planner's: the sensor's data
+        # sheet included) and the simulator's own, exact one (its searches,
+        # settles and jump tests resolve the true geometry)
+        self.resolution = Resolution.of(eps, tol, model.noise, model.taxel)
+        self.exact = res = Resolution.of(eps, tol)
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
         self.sensor = Sensor(model, self.length)

@@ -32,6 +32,7 @@ from collections import deque
 
 import numpy as np
 
+from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit
 from core2d.planner.bootstrap import bootstrap
@@ -137,7 +138,7 @@ class Exploration:
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
-        self.known = KnownContour(join=eps)  # gaps shorter than eps are W2 (§3.1)
+        self.known = KnownContour(join=self.res.w2_dist)  # gaps narrower are W2 (§3.1)
 
     def add(self, area):
         area.index = len(self.result.areas)
@@ -163,7 +164,9 @@ class Exploration:
 
     def traced(self, polylines, ends) -> float:
         """Record W1 polylines (material on the right) and the postures that
-        touched their ends; their total length."""
+        touched their ends; their total length. Noisy readings are smoothed
+        over the sensor's jitter first (:func:`core2d.planner.denoise.smooth`)."""
+        polylines = [smooth(pl, self.res) for pl in polylines]
         self.result.w1.extend(polylines)
         for pl, (pose_first, pose_last) in zip(polylines, ends):
             self.known.add(pl, pose_first, pose_last)

@@ -234,7 +234,7 @@ def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
     """W1 is contour the tip slid along. Cut the traced polylines (in trace
     order; ``sign`` +1 when the material lies on their right, -1 on their
     left) at a step longer than the trace's sampling step ``hop`` (eps / 4,
-    :attr:`~core2d.resolution.Resolution.fan_spacing`) that turns concave by
+    :attr:`~core2d.resolution.Resolution.hop`, + the sensor's jitter) that turns concave by
     more than :data:`HOP_TURN` at either end, and register the stretch
     between its two contacts as an unknown area (rule ``"hop"``). The turns
     are read over at least ``hop`` of contour on either side

@@ -7,7 +7,7 @@ contour with :func:`core2d.truth.metrics.slice_metrics` (tolerance eps / 2)
 and :func:`core2d.truth.metrics.sensor_metrics` (eps / 2 + 2 S x eps). One
 row per group and level: slices, reachable coverage and precision at both
 tolerances (length weighted, and the worst slice at the sensor's), W3 lids
-and unsound ones, motions and their ratio to the noiseless run (total, and
+and unsound ones at both tolerances, motions and their ratio to the noiseless run (total, and
 the worst slice), budget hits.
 
     python -m bench.sensor_study                       # every group, every level
@@ -54,7 +54,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
             "reachable_length", "precision", "precise_length", "precision_sensor",
             "precise_length_sensor", "detected_length", "w3_count", "w3_unsound_count",
-            "motions", "budget_hit")}})
+            "w3_unsound_count_sensor", "motions", "budget_hit")}})
     base = rows[0]["motions"]
     for r in rows:
         r["ratio"] = r["motions"] / max(base, 1)
@@ -144,6 +144,7 @@ def summarise(rows) -> list[dict]:
             "prec_sensor_min": min(r["precision_sensor"] for r in rs),
             "lids": sum(r["w3_count"] for r in rs),
             "unsound": sum(r["w3_unsound_count"] for r in rs),
+            "unsound_sensor": sum(r["w3_unsound_count_sensor"] for r in rs),
             "motions": sum(r["motions"] for r in rs),
             "ratio": sum(r["motions"] for r in rs) / max(base, 1),
             "ratio_max": max(r["ratio"] for r in rs),
@@ -155,14 +156,15 @@ def summarise(rows) -> list[dict]:
 def markdown(summary) -> str:
     """The summary as a markdown table."""
     rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
-            "(min) | precision eps/2 | precision eps/2+2σ (min) | W3 lids (unsound) | motions "
-            "| × noiseless (max) | budget hits |", "|" + "---|" * 12]
+            "(min) | precision eps/2 | precision eps/2+2σ (min) | W3 lids | unsound eps/2 | "
+            "unsound eps/2+2σ | motions "
+            "| × noiseless (max) | budget hits |", "|" + "---|" * 14]
     for s in summary:
         rows.append(
             f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
             f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
             f"{s['precision']:.4f} | {s['precision_sensor']:.4f} ({s['prec_sensor_min']:.4f}) | "
-            f"{s['lids']} ({s['unsound']}) | {s['motions']} | {s['ratio']:.2f} "
+            f"{s['lids']} | {s['unsound']} | {s['unsound_sensor']} | {s['motions']} | {s['ratio']:.2f} "
             f"({s['ratio_max']:.2f}) | {s['budget']} |")
     return "\n".join(rows)
 

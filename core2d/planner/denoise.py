@@ -6,7 +6,7 @@ a compliant trace, one every eps / 4 or less. With a noisy sensor
 the noise, which is then larger than the spacing of the contacts: the
 recorded polyline zigzags, its segments turn back on each other, and the
 robot's map (:class:`~core2d.planner.known.KnownContour`), which chains pieces
-that turn less than 120 degrees, no longer follows it -- dead ends and loops
+that turn less than 120 degrees, no longer follows it -- dead ends and cycles
 that noise alone made.
 
 :func:`smooth` replaces each run of contacts spanning

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from core2d.motionlog import MotionLog
+
 __all__ = ["AreaRecord", "SenseStats", "SliceResult"]
 
 
@@ -101,6 +103,10 @@ class SliceResult:
         budget hit, or passes through the lid found nothing new).
     areas : list of AreaRecord -- the A_iB_i log.
     stats : SenseStats
+    known_at : dict -- ``"w1"``, ``"w2"``, ``"w3"`` -> list of int parallel to
+        that class: the index of the motion after which each piece was
+        recorded (an animation grows the known contour with it).
+    motions : MotionLog or None -- one row per motion (:mod:`core2d.motionlog`).
     """
 
     w1: list = field(default_factory=list)
@@ -109,3 +115,5 @@ class SliceResult:
     unknown: list = field(default_factory=list)
     areas: list = field(default_factory=list)
     stats: SenseStats = field(default_factory=SenseStats)
+    known_at: dict = field(default_factory=lambda: {"w1": [], "w2": [], "w3": []})
+    motions: MotionLog | None = None

@@ -2,22 +2,26 @@
 
 This is the only module that sees both rooms of core2d: it builds the
 simulated probe (:mod:`core2d.sim`, which owns the geometry) and hands it to
-the planner (:mod:`core2d.planner.run`, which sees sensor readings only) or,
-with ``method="finger"``, to the dense finger-probing baseline
-(:mod:`core2d.planner.finger`).
+the planner (:mod:`core2d.planner.run`, which sees sensor readings only) -- with the
+default flow or the paper's Fig. 16 alone (:mod:`core2d.planner.flow`) --
+or, with ``method="finger"``, to the dense finger-probing baseline
+(:mod:`core2d.planner.finger`). A :class:`~core2d.sim.recorder.Recorder`
+between the two logs every motion (``result.motions``).
 """
 from __future__ import annotations
 
 from core2d.planner.finger import finger_probe
+from core2d.planner.flow import FLOWS
 from core2d.planner.run import explore
 from core2d.result import SliceResult
 from core2d.sim.contact import ContactModel
 from core2d.sim.probe import Probe
+from core2d.sim.recorder import Recorder
 from core2d.sim.sensor import SensorModel
 
 __all__ = ["sense_slice", "METHODS"]
 
-METHODS = ("pulling", "finger")
+METHODS = ("pulling", "paper", "finger")
 
 
 def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: float | None = None,
@@ -38,8 +42,10 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
         (:class:`core2d.resolution.Resolution` derives every tolerance from both).
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
-    method : {'pulling', 'finger'} -- the paper's algorithm, or straight
-        insertions on a grid (:func:`core2d.planner.finger.finger_probe`).
+    method : {'pulling', 'paper', 'finger'} -- the paper's algorithm with the
+        planner's additions, the paper's Fig. 16 flow alone
+        (:data:`core2d.planner.flow.PAPER`), or straight insertions on a grid
+        (:func:`core2d.planner.finger.finger_probe`).
     directions, spacing : finger probing only -- insertion directions and
         line spacing (default eps / 2).
     sensor : SensorModel, optional -- noise and taxels of the readings
@@ -51,7 +57,10 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    probe = Probe(contact, workspace, eps, probe_length, tol, sensor)
+    probe = Recorder(Probe(contact, workspace, eps, probe_length, tol, sensor))
     if method == "finger":
-        return finger_probe(probe, eps, directions, spacing, max_motions)
-    return explore(probe, eps, max_motions, max_areas, bootstrap_count)
+        result = finger_probe(probe, eps, directions, spacing, max_motions)
+    else:
+        result = explore(probe, eps, max_motions, max_areas, bootstrap_count, FLOWS[method])
+    result.motions = probe.log()
+    return result

@@ -25,12 +25,14 @@ import meshes
 from meshes.loading import open_edge_count
 from recon3d.checks import InputError, check_flag, check_out_dir
 from recon3d.config import RunConfig, validate
-from recon3d.spellings import make_config, numpydoc_params, run_signature
+from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import write_outputs
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
 from recon3d.score.evaluate import contour_cloud, coverage_mesh
+from recon3d.score.report import chord_lines, slicing_text, surface_lines
+from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.viz import blocks as scene, plot
@@ -86,19 +88,32 @@ class Result:
 
     def __repr__(self) -> str:
         fams = ", ".join(f"{f.label} x{len(f.slices)}" for f in self.sensing.families)
-        t = self.metrics.get("total", {})
-        f1 = ((t.get("surface") or {}).get("fscore") or {}).get("1%")
-        cov = t.get("coverage")
+        t, ev = self.metrics.get("total", {}), self.metrics.get("surface_eval", {})
+        surf = t.get("surface") or {}
+        f1 = (surf.get("fscore") or {}).get("1%")
+        f1r = ((surf.get("reachable") or {}).get("fscore") or {}).get("1%")
+        slab = ev.get("slab_share")
         return (f"<recon3d.Result mesh={self.sensing.name!r} families=[{fams}] "
-                f"slices={len(self.slices)} eps={self.sensing.eps:.4g} "
-                f"F@1%={'n/a' if f1 is None else format(f1, '.3f')} "
-                f"coverage={'n/a' if cov is None else format(cov, '.3f')} "
+                f"slices={len(self.slices)} eps={number(self.sensing.eps, '.4g')} "
+                f"slab={number(slab)} F@1%={number(f1)} reachable_F@1%={number(f1r)} "
+                f"coverage_2D={number(t.get('coverage'))} "
+                f"unknown_chords={t.get('unknown_chords', 0)} "
                 f"warnings={len(self.warnings)}>")[:399]
 
+    def headline(self, shown: int = 4) -> tuple[list[str], list[str]]:
+        """Text lines of the 3D scores and of the unknown chords (``shown`` of them located):
+        :func:`recon3d.score.report.surface_lines`, :func:`~recon3d.score.report.chord_lines`."""
+        return surface_lines(self.metrics), chord_lines(self.metrics, shown)
+
     def blocks(self) -> Any:
-        """The ``scene.vtm`` multiblock (ground truth, surface, curves)."""
-        gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step)
-        return scene.scene_blocks(gt, self.surface, self.slices)
+        """The ``scene.vtm`` multiblock (ground truth, surface, curves, headline)."""
+        gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step,
+                           self.surface)
+        return scene.scene_blocks(gt, self.surface, self.slices,
+                                  headline=[f"{self.sensing.name}: slices "
+                                            f"{slicing_text(self.metrics)}"] + sum(self.headline(2), []),
+                                  normals=[f.normal for f in self.sensing.families],
+                                  axes=[f.label for f in self.sensing.families])
 
     def plot(self, off_screen: bool | None = None, screenshot: str | os.PathLike | None = None,
              **show_kwargs: Any) -> Any:
@@ -141,10 +156,12 @@ class Result:
         return p
 
     def save(self, out: str | os.PathLike, png: bool = True) -> list[Path]:
-        """Write sensing.json, metrics.json, surface.ply, scene.vtm, coverage.png into ``out``."""
+        """Write sensing.json, metrics.json, motions.csv, surface.ply, scene.vtm,
+        coverage.png and slices.png into ``out`` (``png=False``: neither picture)."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
-                             self.blocks(), title=self.sensing.name, png=png)
+                             self.blocks(), title=self.sensing.name, png=png,
+                             slices=self.slices)
 
 
 def _checked(mesh: trimesh.Trimesh, name: str, drop_nonfinite: bool) -> trimesh.Trimesh:
@@ -200,7 +217,8 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     if stage is not None:
         stage("scoring")
     surface, info = score(sensed, recon)
-    return Result(mesh, sensed, recon, metrics_document(sensed, surface, info), notes)
+    doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
+    return Result(mesh, sensed, recon, doc, notes)
 
 
 def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,

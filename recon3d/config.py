@@ -34,7 +34,10 @@ from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, I
                             check_slices, check_tol, parse_slices, positive, units_note)
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
-           "default_jobs", "COARSE"]
+           "default_jobs", "COARSE", "METHODS"]
+
+METHODS = ("pulling", "paper")
+"""``--method``: the planner's flows (:mod:`core2d.planner.flow`)."""
 
 COARSE = 2.0
 """``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
@@ -189,6 +192,17 @@ class RunConfig:
         doc=(("`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
               "reference) or `trimesh` (trimesh's generic ray engine; ≈ 20–35 × slower than "
               "Embree per motion, for comparison)"),))
+    method: Literal["pulling", "paper"] = _param(
+        "pulling", choices=METHODS, shown_default="`pulling`", metavar="M",
+        check=lambda v, n: check_choice(v, n, METHODS),
+        help="pulling (default: the paper's algorithm with the planner's map, deferral, "
+        "revisits and audit) or paper (the paper's Fig. 16 flow alone: dead ends and "
+        "Area(G) = 0 become W3 at once, section 4.2.1)",
+        doc=(("`pulling`: the paper's algorithm with the planner's additions (its map of what "
+              "it recorded, deferral and revisits of dead ends, W3 only with a proof, the "
+              "audit of loose ends); `paper`: the paper's Fig. 16 flow alone (dead ends and "
+              "Area(G_i) = 0 become W3 at once, §4.2.1). Both write the same outputs; "
+              "`metrics.json` records it"),))
     max_motions: int = _param(
         20000, parse=int, metavar="M", shown_default="20000", check=lambda v, n: at_least(v, n),
         help="motion budget per slice (default 20000)",

@@ -1,4 +1,10 @@
-"""How the run parameters are spelled and documented, from :data:`recon3d.config.PARAMS`.
+"""How the run parameters and the numbers of a run are spelled.
+
+Numbers: :func:`number` is the one formatter of every number a run prints or
+draws (the summary, ``repr(Result)``, coverage.png): no negative zero, ``n/a``
+for a missing value.
+
+Parameters, from :data:`recon3d.config.PARAMS`:
 
 The keywords of :func:`recon3d.run` (:func:`make_config`, :func:`run_signature`,
 :func:`numpydoc_params`), the ``[params]`` keys of a batch manifest
@@ -18,10 +24,33 @@ import inspect
 
 from recon3d.config import PARAMS, RunConfig
 
-__all__ = ["BATCH_ONLY", "batch_keys", "make_config", "keyword_defaults", "run_signature",
+__all__ = ["number", "percent", "BATCH_ONLY", "batch_keys", "make_config", "keyword_defaults", "run_signature",
            "options_table", "numpydoc_params", "manifest_doc"]
 
 _BY_KEY = {p.key: p for p in PARAMS}
+
+
+def number(x, spec: str = ".3f") -> str:
+    """``x`` formatted with ``spec``; a value that rounds to zero never shows a minus sign.
+
+    >>> number(-0.0000004), number(-0.0004, "+.3f"), number(None), number(0.25, "+.3f")
+    ('0.000', '+0.000', 'n/a', '+0.250')
+    """
+    if x is None:
+        return "n/a"
+    text = format(x, spec)
+    if text.startswith("-") and float(text.rstrip("%")) == 0.0:  # rounds to -0
+        text = format(0.0, spec)
+    return text
+
+
+def percent(share, digits: int = 0) -> str:
+    """A share in [0, 1] as a percentage (no negative zero).
+
+    >>> percent(0.6666), percent(None), percent(-1e-9, 1)
+    ('67%', 'n/a', '0.0%')
+    """
+    return "n/a" if share is None else number(100.0 * share, f".{digits}f") + "%"
 BATCH_ONLY = {"eps_share": ("eps", "eps as a share of the mesh diagonal (instead of eps in "
                                    "mesh units)")}
 """Manifest keys that are not run parameters: key -> (the parameter it sets, meaning)."""

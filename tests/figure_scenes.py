@@ -16,6 +16,7 @@ from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import substring
 
 from core2d.planner.areas import Area
+from core2d.planner.flow import PULLING
 from core2d.planner.run import Budget, Exploration
 from core2d.sim.probe import Probe
 from core2d.planner.regions import Posture
@@ -115,15 +116,15 @@ def vertical_area(probe, a, b, **kw) -> Area:
     return Area(a, b, pose_to(probe, a, DOWN), pose_to(probe, b, DOWN), **kw)
 
 
-def new_run(probe):
+def new_run(probe, flow=PULLING):
     """The planner's per-slice state without the bootstrap: areas added by
-    hand are processed by the flowchart of Fig. 16."""
-    return Exploration(probe, probe.eps, Budget(probe))
+    hand are processed by the flowchart of Fig. 16 (with ``flow``'s additions)."""
+    return Exploration(probe, probe.eps, Budget(probe), flow)
 
 
-def run_one(probe, area):
+def run_one(probe, area, flow=PULLING):
     """Process ``area`` (only it, not its children); returns the Exploration."""
-    run = new_run(probe)
+    run = new_run(probe, flow)
     run.add(area)
     run.process(run.queue.popleft())
     return run

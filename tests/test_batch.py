@@ -22,7 +22,8 @@ def _read(out):
     docs = {}
     for d in sorted((out / "runs").iterdir()):
         docs[d.name] = ({k: without_timing(json.load(open(d / f"{k}.json")))
-                         for k in ("metrics", "sensing")}, (d / "surface.ply").read_bytes())
+                         for k in ("metrics", "sensing")}, (d / "surface.ply").read_bytes(),
+                        (d / "motions.csv").read_text())
     return rows, docs
 
 

@@ -61,6 +61,16 @@ def test_kernels_sense_exactly_as_the_python_path(name, index):
     for key in ("motions", "rays", "casts", "pushes", "push_attempts", "joint_path"):
         assert getattr(fast.stats, key) == getattr(slow.stats, key), key
     assert fast.stats.motions > 100 and fast.stats.rays > 10_000
+    _same_log(fast.motions, slow.motions)  # the motion log records both engines alike
+
+
+def _same_log(a, b):
+    assert len(a) == len(b) > 0
+    for key in ("kind", "phase", "area", "event", "contacts", "other_start", "blocked",
+                "torque"):
+        assert np.array_equal(getattr(a, key), getattr(b, key)), key
+    for key in ("before", "after", "tip", "tip_contact", "other"):
+        np.testing.assert_allclose(getattr(a, key), getattr(b, key), atol=1e-9, err_msg=key)
 
 
 def test_kernel_windows_are_the_probe_offsets():

@@ -26,7 +26,7 @@ from core2d import sense_slice
 CORE2D = pathlib.Path(__file__).resolve().parents[1] / "core2d"
 FORBIDDEN = {"trimesh", "embreex", "manifold3d", "pyvista", "vtk", "slicer", "meshes", "recon3d"}
 SHARED = {"core2d.planar", "core2d.readings", "core2d.resolution", "core2d.result",
-          "core2d.visibility"}
+          "core2d.visibility", "core2d.motionlog"}
 # room -> core2d modules it may import besides its own room and SHARED
 ALLOWED = {"sim": set(), "planner": set(), "truth": set()}
 SIMULATOR = {"core2d.sim.search", "core2d.sim.compiled"}  # the ray engines

@@ -58,7 +58,7 @@ def test_offset_sphere_distances_are_the_offset():
            for k, s in {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}.items()}
     assert tau["0.5%"] < d < tau["1%"]
     assert surf["fscore"] == {"0.5%": 0.0, "1%": 1.0, "2%": 1.0}
-    assert extra["coverage"] == 1.0 and extra["tau"] == pytest.approx(tau)
+    assert extra["touched_share"] == 1.0 and extra["tau"] == pytest.approx(tau)
 
 
 def test_caps_are_not_scored():
@@ -90,7 +90,7 @@ def test_reachable_part_and_coverage_follow_the_contour_samples():
     surf, extra = surface_metrics(rec, _gt(), cloud, count=20000)
     assert surf["reachable"]["completeness"] < 0.25 < 0.35 < surf["completeness"]
     assert surf["reachable"]["accuracy"] < 0.25 < 0.35 < surf["accuracy"]
-    assert extra["coverage"] == pytest.approx(0.5, abs=0.05)
+    assert extra["touched_share"] == pytest.approx(0.5, abs=0.05)
     assert extra["reachable_share"] == pytest.approx(0.5, abs=0.05)
 
 

@@ -61,8 +61,8 @@ def test_saved_files_contract(saved, pocket):
     import trimesh
 
     names = {p.name for p in saved.iterdir()}
-    assert names == {"sensing.json", "metrics.json", "surface.ply", "scene.vtm", "scene",
-                     "coverage.png"}
+    assert names == {"sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
+                     "scene", "coverage.png", "slices.png"}
     for p in saved.rglob("*"):
         mode = stat.S_IMODE(os.stat(p).st_mode)
         assert mode == (0o755 if p.is_dir() else 0o644), p
@@ -74,7 +74,8 @@ def test_saved_files_contract(saved, pocket):
     assert set(blocks.keys()) == {"ground_truth", "surface", "curves"}
     assert np.array_equal(blocks["surface"].cell_data["label"], labels)
     assert set(np.unique(blocks["curves"].cell_data["class"])) <= {1, 2, 3, 4}
-    assert set(np.unique(blocks["ground_truth"].cell_data["coverage"])) <= {0, 1, 2, 3}
+    assert set(np.unique(blocks["ground_truth"].cell_data["coverage"])) <= {0, 1, 2, 3, 4}
+    assert np.isfinite(blocks["ground_truth"].point_data["distance"]).all()
 
 
 def test_coverage_png_is_not_blank(saved):
@@ -88,6 +89,21 @@ def test_coverage_png_is_not_blank(saved):
     assert len(colours) > 100 and not_white > 0.1
     for half in (rgb.reshape(800, 1600, 3)[:, :800], rgb.reshape(800, 1600, 3)[:, 800:]):
         assert (half < 240).any(axis=2).mean() > 0.05  # both panels drawn
+
+
+def test_coverage_png_shows_the_distance_colour_bar(saved):
+    """Panel (b) carries the binned distance bar: every bin colour fills a run of pixels
+    below the object (the bar is 0.6 of the panel wide, each of six bins ~1/10 of it)."""
+    from matplotlib.image import imread
+
+    from recon3d.viz.plot import DISTANCE_COLORS, hex_rgb
+
+    img = (imread(saved / "coverage.png")[..., :3] * 255).round().astype(int)
+    right = img[:, 800:]
+    for color in DISTANCE_COLORS:
+        want = np.array([round(255 * c) for c in hex_rgb(color)])
+        hit = (np.abs(right - want).max(axis=2) <= 2)
+        assert hit.sum(axis=1).max() >= 40, color  # a bin of the bar is ~50 px wide
 
 
 def test_undercut_gets_w3_faces_over_unreachable_contour():
@@ -140,8 +156,9 @@ def test_without_opengl_the_rest_is_written_and_a_stale_picture_removed(pocket, 
     monkeypatch.setattr(recon3d.viz.plot, "save_png", no_gl)
     with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
         files = pocket.save(out)
-    assert {p.name for p in files} == {"sensing.json", "metrics.json", "surface.ply",
-                                       "scene.vtm", "scene"}
+    # slices.png is matplotlib's Agg: it needs no OpenGL
+    assert {p.name for p in files} == {"sensing.json", "metrics.json", "motions.csv",
+                                       "surface.ply", "scene.vtm", "scene", "slices.png"}
     assert not (out / "coverage.png").exists()
 
 

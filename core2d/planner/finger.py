@@ -94,6 +94,7 @@ def finger_probe(probe: Robot, eps: float, directions: int = 32, spacing: float 
     points, dirs, sweep = probe_lines(probe.center, probe.radius, directions, spacing)
     result = SliceResult()
     touches = np.full((len(points), 2), np.nan)
+    at = np.full(len(points), -1)  # the insertion that touched, per line
     budget_hit = False
     for i, (p, t) in enumerate(zip(points, dirs)):
         if probe.motions + 2 > max_motions:
@@ -102,7 +103,7 @@ def finger_probe(probe: Robot, eps: float, directions: int = 32, spacing: float 
         probe.approach(p, t)
         c = probe.insert(2 * probe.radius).tip_contact
         if c is not None:
-            touches[i] = c.point
+            touches[i], at[i] = c.point, probe.motions - 1
     joined = np.zeros(len(points), dtype=bool)
     for i in range(len(points) - 1):
         a, b = touches[i], touches[i + 1]
@@ -110,8 +111,10 @@ def finger_probe(probe: Robot, eps: float, directions: int = 32, spacing: float 
             continue
         if np.linalg.norm(b - a) < eps:
             result.w2.append(_oriented(a, b, dirs[i]))
+            result.known_at["w2"].append(int(at[i + 1]))
             joined[i] = joined[i + 1] = True
-    result.w1 = [touches[i][None].copy() for i in range(len(points))
-                 if not joined[i] and not np.isnan(touches[i][0])]
+    single = [i for i in range(len(points)) if not joined[i] and not np.isnan(touches[i][0])]
+    result.w1 = [touches[i][None].copy() for i in single]
+    result.known_at["w1"] = [int(at[i]) for i in single]
     result.stats = final_stats(probe, budget_hit=budget_hit, seconds=time.perf_counter() - t0)
     return result

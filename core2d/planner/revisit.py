@@ -259,6 +259,7 @@ def revisit(run: Exploration) -> None:
     those still waiting when nothing more can change."""
     todo, run.deferred = run.deferred, []
     for area in todo:
+        run.probe.note_phase("revisit", area.index)
         why = revisit_one(run, area)
         if why is None:
             continue

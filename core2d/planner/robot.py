@@ -8,7 +8,9 @@ the resolution (:class:`~core2d.resolution.Resolution`: eps, tol and the
 tolerances that follow). It never sees the contact model nor the
 simulator's internals (its ray engine, its fan windows, its counters): the
 planner keeps its own counters (:class:`PlannerCounters`) and asks the robot
-only for its motion count and, at the end, its costs.
+only for its motion count and, at the end, its costs. It tells the robot
+which step of Fig. 16 it is in (:meth:`Robot.note_phase`, one way: for the
+motion log of :class:`core2d.sim.recorder.Recorder`).
 :class:`core2d.sim.probe.Probe` implements the protocol.
 """
 from __future__ import annotations
@@ -50,6 +52,11 @@ class Robot(Protocol):
 
     def costs(self) -> SenseStats:
         """The robot's cost counters so far (motions, joint path, rays, pushes)."""
+
+    def note_phase(self, phase: str, area: int = -1) -> None:
+        """Told which step of Fig. 16 the next motions serve, for area ``area``
+        (one of :data:`core2d.motionlog.PHASES`). One way: returns nothing,
+        changes no motion (a motion recorder logs it; the probe ignores it)."""
 
     def approach(self, point: np.ndarray, direction: np.ndarray) -> Reading:
         """Free transfer to the line through ``point`` along ``direction``."""

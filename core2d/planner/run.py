@@ -24,6 +24,11 @@ it again with everything the robot has recorded (another pass, another side).
 Finally :func:`core2d.planner.audit.audit` registers the contour that no area
 holds any more (loose ends of the recorded contour: islands, §3.2).
 Areas are processed breadth first until none is left or a budget is hit.
+
+The map, the deferral, the proof for W3, the revisit and the audit are the
+planner's additions to Fig. 16; with the ``paper`` flow
+(:mod:`core2d.planner.flow`) they are off and the paper's flow runs alone:
+a dead end and Area(G_i) = 0 become W3 at once (§4.2.1).
 """
 from __future__ import annotations
 
@@ -36,6 +41,7 @@ from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit
 from core2d.planner.bootstrap import bootstrap
+from core2d.planner.flow import PULLING, Flow
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.regions import Posture, near_probe
@@ -124,12 +130,14 @@ class Exploration:
     deferred : list of Area -- dead ends, looked at again by ``revisit``.
     waiting : list of (Area, str) -- lids ready for W3, waiting to close a loop.
     audits : int -- rounds of :func:`~core2d.planner.audit.audit` made.
-    known : KnownContour -- the robot's own map of what it has recorded.
+    known : KnownContour or None -- the robot's own map of what it has
+        recorded (None when ``flow.map`` is off).
+    flow : Flow -- which additions to Fig. 16 are on.
     counters : PlannerCounters -- what the planner counts itself.
     """
 
-    def __init__(self, probe: Robot, eps: float, budget: Budget):
-        self.probe, self.eps, self.budget = probe, eps, budget
+    def __init__(self, probe: Robot, eps: float, budget: Budget, flow: Flow = PULLING):
+        self.probe, self.eps, self.budget, self.flow = probe, eps, budget, flow
         self.res = probe.resolution
         self.angle_tol = self.res.angle_tol(probe.length)
         self.counters = PlannerCounters()
@@ -138,7 +146,8 @@ class Exploration:
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
-        self.known = KnownContour(join=self.res.w2_dist)  # gaps narrower are W2 (§3.1)
+        # the robot's map; gaps narrower than eps (+ the sensor's jitter) are W2 (§3.1)
+        self.known = KnownContour(join=self.res.w2_dist) if flow.map else None
 
     def add(self, area):
         area.index = len(self.result.areas)
@@ -154,10 +163,15 @@ class Exploration:
             lid = np.stack([area.a, area.b])
             getattr(self.result, outcome.lower()).append(lid)
             if outcome != "unknown":
-                self.known.add(lid, area.pose_a, area.pose_b)
+                self.result.known_at[outcome.lower()].append(self.probe.motions - 1)
+                if self.known is not None:
+                    self.known.add(lid, area.pose_a, area.pose_b)
 
     def defer(self, area, why):
-        """A dead end: the area stays unknown and is looked at again later."""
+        """A dead end: the area stays unknown and is looked at again later
+        (``flow.defer``); in the paper's flow it is W3 at once (§4.2.1)."""
+        if not self.flow.defer:
+            return self.close(area, "W3", why + " (§4.2.1)")
         rec = self.result.areas[area.index]
         rec.outcome, rec.note = "deferred", why
         self.deferred.append(area)
@@ -168,8 +182,10 @@ class Exploration:
         over the sensor's jitter first (:func:`core2d.planner.denoise.smooth`)."""
         polylines = [smooth(pl, self.res) for pl in polylines]
         self.result.w1.extend(polylines)
+        self.result.known_at["w1"].extend([self.probe.motions - 1] * len(polylines))
         for pl, (pose_first, pose_last) in zip(polylines, ends):
-            self.known.add(pl, pose_first, pose_last)
+            if self.known is not None:
+                self.known.add(pl, pose_first, pose_last)
         return float(sum(np.hypot(*np.diff(pl, axis=0).T).sum() for pl in polylines))
 
     def children(self, area, kids, traced=0.0):
@@ -192,16 +208,18 @@ class Exploration:
         if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
             return self.close(area, "W2", "Dist(A,B) < eps")
         same = self.res.tip_zone
-        if self.known.covers(area.a, area.b, same):
+        if self.flow.map and self.known.covers(area.a, area.b, same):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)
         G = area.G
         pose = None if G is not None else _single_posture(area, probe)
         if pose is not None:
+            probe.note_phase("detection", area.index)
             G, ok = _single_detection(probe, pose, area)
             if ok and G is None:
                 return self.zero_G(area)
+        probe.note_phase("escape" if area.escape else "initial_pass", area.index)
         reading, G, why = initial_pass(probe, area, G)
         if reading is None:
             return self.defer(area, why)
@@ -210,11 +228,12 @@ class Exploration:
         if _same(c, area.a, same) or _same(c, area.b, same):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
-        if self.known.distance(c) <= self.res.near:
+        if self.flow.map and self.known.distance(c) <= self.res.near:
             # contour the robot has recorded already (Ext, or Int traced through
             # other areas): nothing new to start the search from
             return self.defer(area, "Theorem 1 pass touched recorded contour")
         joint_i = reading.joint.copy()
+        probe.note_phase("bisection", area.index)
         local = None if area.escape else bisection(probe, area, G, reading)
         if local is None:
             return self.escape(area, c, pose_c)
@@ -227,7 +246,10 @@ class Exploration:
         crosses the lid (:func:`proof_lines`). Where lines remain (a slit
         narrower than eps that the pivot about the tip cannot resolve, or
         Fig. 6(b) met inside a slot narrower than eps, where §3.2 fails) the
-        area is deferred: :mod:`core2d.planner.revisit` tries those lines."""
+        area is deferred: :mod:`core2d.planner.revisit` tries those lines.
+        Without ``flow.w3_proof`` (the paper's flow): W3 at once."""
+        if not self.flow.w3_proof:
+            return self.close(area, "W3", "single probe detection, Area(G) = 0 (§4.2.1)")
         if (lid_like(self, area) and closes_loop(self.known, area, self.res.tip_zone, self.eps / 4)
                 and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
@@ -243,6 +265,7 @@ class Exploration:
 
     def trace(self, area, G, joint_i, local):
         probe = self.probe
+        probe.note_phase("tracing", area.index)
         sides, q = plan_sides(local)
         q = split_contact(q, area, G, joint_i)  # Fig. 12(c) only with Q on Int
         pose_d = Posture(local.reading.joint, local.reading.direction)
@@ -279,7 +302,7 @@ class Exploration:
 
 
 def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int = 4000,
-            bootstrap_count: int = 12) -> SliceResult:
+            bootstrap_count: int = 12, flow: Flow = PULLING) -> SliceResult:
     """Run the pulling-motion algorithm with ``probe`` until nothing is left.
 
     Parameters
@@ -290,6 +313,8 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
     eps : float -- the paper's epsilon.
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
+    flow : Flow -- :data:`~core2d.planner.flow.PULLING` (default) or
+        :data:`~core2d.planner.flow.PAPER` (Fig. 16 alone).
 
     Returns
     -------
@@ -297,7 +322,8 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
     """
     t0 = time.perf_counter()
     budget = Budget(probe, max_motions, max_areas)
-    run = Exploration(probe, eps, budget)
+    run = Exploration(probe, eps, budget, flow)
+    probe.note_phase("bootstrap")
     for area in bootstrap(probe, bootstrap_count):
         run.add(area)
     while True:
@@ -305,9 +331,9 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
             run.process(run.queue.popleft())
         if run.queue or not budget():
             break
-        if run.deferred:
+        if run.deferred and flow.revisit:
             revisit(run)  # dead ends, with everything recorded so far
-        elif not audit(run):  # contour no area holds any more
+        elif not (flow.audit and audit(run)):  # contour no area holds any more
             break
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out

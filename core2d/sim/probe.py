@@ -96,6 +96,10 @@ class Probe:
         """A copy of the cost counters so far (motions, joint path, rays, pushes)."""
         return SenseStats(**vars(self.stats))
 
+    def note_phase(self, phase: str, area: int = -1) -> None:
+        """The planner's phase hook: the bare probe ignores it
+        (:class:`core2d.sim.recorder.Recorder` logs it)."""
+
     # ------------------------------------------------------------------ state
     @property
     def direction(self) -> np.ndarray:

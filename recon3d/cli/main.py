@@ -18,7 +18,7 @@ import warnings
 import meshes
 from recon3d.api import WorkerDied, __version__
 from recon3d.checks import InputError
-from recon3d.cli import batch, bench, run, show
+from recon3d.cli import batch, bench, figure, run, show
 from recon3d.cli.printing import warn
 from recon3d.cli.signals import closed_stdout, exit_status, interrupted_line, interrupts
 
@@ -63,7 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
     p = sub.add_parser("scenes", help="list built-in scenes as NAME<TAB>description")
     p.set_defaults(func=_cmd_scenes)
-    for name, cmd in (("run", run), ("batch", batch), ("show", show), ("bench", bench)):
+    for name, cmd in (("run", run), ("batch", batch), ("show", show), ("figure", figure),
+                      ("bench", bench)):
         p = sub.add_parser(name, help=cmd.HELP, description=_description(cmd))
         cmd.add_arguments(p)
         p.set_defaults(func=cmd.command)

@@ -8,6 +8,7 @@ from pathlib import Path
 from recon3d.api import Result
 from recon3d.config import diagonal
 from recon3d.records import MeshRun, SliceRun
+from recon3d.spellings import number
 
 __all__ = ["warn", "summary_lines", "format_seconds", "projected_seconds", "estimate_note",
            "LONG_RUN_SECONDS"]
@@ -70,10 +71,6 @@ def estimate_note(slices: int, first_seconds: float, slice_seconds: float, jobs:
             f"{jobs} job{'s' if jobs > 1 else ''})")
 
 
-def _num(x, fmt=".4f") -> str:
-    return "n/a" if x is None else format(x, fmt)
-
-
 def _names(run: MeshRun, slices: list[SliceRun]) -> str:
     """``axis#k``: k counts the sensed slices of the axis from 0 (with ``--slices auto``
     not the candidate plane, which metrics.json keeps as ``candidate``)."""
@@ -96,25 +93,22 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     run, m = result.sensing, result.metrics
     t, surf, ev = m["total"], m["total"].get("surface"), m["surface_eval"]
     fams = ", ".join(f"{f.label} x{len(f.slices)}" for f in run.families)
-    lines = [f"{run.name}: slices {fams}, eps {run.eps:.4g}, tol {run.tol:.3g}, "
-             f"{run.jobs} job{'s' if run.jobs > 1 else ''}, {run.seconds:.1f} s sensing"]
-    lines.append(f"  2D  reachable coverage {_num(t.get('coverage'))}  precision "
-                 f"{_num(t.get('precision'))}  W3 soundness {_num(t.get('w3_soundness'))} "
-                 f"({t.get('w3_count', 0)} lids)")
+    lines = [f"{run.name}: slices {fams}, eps {number(run.eps, '.4g')}, tol "
+             f"{number(run.tol, '.3g')}, {run.jobs} job{'s' if run.jobs > 1 else ''}, "
+             f"{number(run.seconds, '.1f')} s sensing"]
+    lines.append(f"  2D  reachable coverage {number(t.get('coverage'), '.4f')}  precision "
+                 f"{number(t.get('precision'), '.4f')}  W3 soundness "
+                 f"{number(t.get('w3_soundness'), '.4f')} ({t.get('w3_count', 0)} lids)")
+    scores, chords = result.headline()
+    lines.append(f"  3D  {scores[0]}")
+    lines += [f"      {h}" for h in scores[1:]]
     if surf is not None:
-        diag = diagonal(result.mesh)
-        cd = surf["chamfer_l1"] / diag if surf["chamfer_l1"] is not None else None
-        lines.append(f"  3D  F@1% {_num(surf['fscore']['1%'], '.3f')}  Chamfer-L1/diagonal "
-                     f"{_num(cd, '.2e')}  reachable F@1% "
-                     f"{_num(surf['reachable']['fscore']['1%'], '.3f')}  surface coverage "
-                     f"{_num(ev.get('coverage'), '.3f')}  ({len(result.surface.faces)} faces, "
-                     f"watertight {result.surface.is_watertight})")
-        for fam in ev.get("families", [])[1:]:
-            g = fam["gain"]
-            lines.append(f"      + axis {fam['axis']}: F@1% {_num(g['fscore_1%'], '+.3f')}  "
-                         f"coverage {_num(g['coverage'], '+.3f')}")
-    else:
-        lines.append("  3D  no surface: " + ("; ".join(ev.get("notes", [])) or "nothing sensed"))
+        cd = None if surf["chamfer_l1"] is None else surf["chamfer_l1"] / diagonal(result.mesh)
+        lines.append(f"      Chamfer-L1/diagonal {number(cd, '.2e')}  touched share "
+                     f"{number(ev.get('touched_share'))} (reachable scored ground truth whose "
+                     f"nearest slice point the probe touched)  {len(result.surface.faces)} "
+                     f"faces, watertight {result.surface.is_watertight}")
+    lines += [f"  {h}" for h in chords]
     lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
                  f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
                  f"{t.get('push_attempts', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "

@@ -3,7 +3,7 @@
 Slice INPUT along one or more axes, run the paper's 2D algorithm on every
 slice against a simulated probe, rebuild a watertight surface and score it
 against the mesh. Writes DIR/sensing.json, metrics.json, surface.ply,
-scene.vtm (+ scene/) and coverage.png. DIR is locked while the run lasts: a
+scene.vtm (+ scene/), coverage.png and slices.png (every slice in 2D). DIR is locked while the run lasts: a
 second run into it is refused. A long run says about how long it will take
 once its first slices are sensed, and the first run on a machine says first that it
 compiles the sensing kernels (:func:`recon3d.sensing.cold_kernels`).
@@ -33,9 +33,9 @@ __all__ = ["HELP", "add_arguments", "command", "COMMAND_FLAGS"]
 HELP = "sense every slice of a mesh, rebuild its surface and score it"
 
 COMMAND_FLAGS = (
-    ("--no-png", "skip coverage.png (no OpenGL)",
-     "skip `coverage.png`; without OpenGL (no EGL, no display) it is skipped anyway, with a "
-     "one-line warning, and the other four outputs are written"),
+    ("--no-png", "skip coverage.png and slices.png (no OpenGL, no matplotlib)",
+     "skip `coverage.png` and `slices.png`; without OpenGL (no EGL, no display) `coverage.png` "
+     "is skipped anyway, with a one-line warning, and the other outputs are written"),
     ("--quiet", "no progress bar, mesh report or notes (warnings still print)",
      "no progress bar, mesh report or notes; warnings still print (one line each)"),
 )

@@ -49,9 +49,9 @@ def _area_logs(cut, records) -> list:
 def _slice_document(srun: SliceRun) -> dict:
     cut, res = srun.slice, srun.result
     plane = cut.plane
-    segments = [{"class": "W1", "points": _world(cut, w)} for w in res.w1]
-    segments += [{"class": "W2", "points": _world(cut, w)} for w in res.w2]
-    segments += [{"class": "W3", "points": _world(cut, w)} for w in res.w3]
+    at = res.known_at  # the motion after which each piece was recorded
+    segments = [{"class": cls.upper(), "points": _world(cut, w), "motion": int(k)}
+                for cls in ("w1", "w2", "w3") for w, k in zip(getattr(res, cls), at[cls])]
     stats = res.stats.as_dict()
     stats["unknown"] = len(res.unknown)
     return {
@@ -82,6 +82,7 @@ def sensing_document(run: MeshRun) -> dict:
         "tol": float(run.tol),
         "probe_length": float(run.probe_length),
         "backend": run.config.backend,
+        "method": run.config.method,
         "families": _families(run),
         "slices": [_slice_document(s) for s in run.slices],
     }
@@ -99,14 +100,19 @@ def _slice_metrics(srun: SliceRun, run: MeshRun, position: int) -> dict:
     return out
 
 
-def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> dict:
+def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
+                     unknown_chords: list = ()) -> dict:
     """Per-slice 2D metrics, their totals, the 3D ``total.surface`` block and robot time.
 
     Parameters
     ----------
     run : recon3d.records.MeshRun
     surface : dict or None -- from :func:`recon3d.score.score`.
-    surface_eval : dict -- its explanation (domain, tau, samples, family gains).
+    surface_eval : dict -- its explanation (domain, tau, samples, the shares of
+        the ground truth, each family's own surface).
+    unknown_chords : list of dict -- :func:`recon3d.score.unknowns.unknown_chords`;
+        ``total.unknown_chords`` counts them, ``total.unknown_chord_length`` sums
+        their lengths.
 
     ``robot.probe_speed`` is in mesh units per second (``robot.units``; the
     ``probe_speed`` parameter is in mm/s). With ``--slices auto`` each slice's
@@ -117,10 +123,13 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
     cfg = run.config
     total = dict(run.totals)
     total["surface"] = surface
+    total["unknown_chords"] = len(unknown_chords)
+    total["unknown_chord_length"] = float(sum(c["length"] for c in unknown_chords))
     doc = {
         "mesh": run.name,
         "eps": float(run.eps),
         "tol": float(run.tol),
+        "method": cfg.method,
         "seconds": float(run.seconds),
         "jobs": int(run.jobs),
         "families": _families(run),
@@ -128,6 +137,7 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict) -> 
                   "rule": ROBOT_RULE, "units": cfg.units},
         "total": total,
         "surface_eval": surface_eval,
+        "unknown_chords": list(unknown_chords),
         "slices": [_slice_metrics(s, run, k) for fam in run.families
                    for k, s in enumerate(fam.slices)],
     }

@@ -2,6 +2,8 @@
 
 A machine without OpenGL cannot render ``coverage.png``: the other files
 are still written and a ``RuntimeWarning`` says why the picture is missing.
+``slices.png`` (every slice in 2D, :mod:`recon3d.viz.multiples`) needs no
+OpenGL: matplotlib's Agg draws it.
 """
 from __future__ import annotations
 
@@ -13,12 +15,16 @@ import numpy as np
 import trimesh
 
 from recon3d.io import ply
+from recon3d.io.motions import write_motions
 from recon3d.io.staged import Staged
 from recon3d.viz import plot
+from recon3d.viz.multiples import save_multiples
+from recon3d.viz.sliceview import slice_views
 
-__all__ = ["OUTPUTS", "write_outputs", "write_json"]
+__all__ = ["OUTPUTS", "write_outputs", "write_json", "write_slices_png"]
 
-OUTPUTS = ("sensing.json", "metrics.json", "surface.ply", "scene.vtm", "coverage.png")
+OUTPUTS = ("sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
+           "coverage.png", "slices.png")
 """Files of a complete run (``scene.vtm`` comes with its ``scene/`` folder)."""
 
 
@@ -40,8 +46,23 @@ def _render(blocks, path, title) -> None:
                       f"EGL or a display; --no-png skips it)", RuntimeWarning, stacklevel=3)
 
 
+def write_slices_png(path, sensing: dict, metrics: dict, slices=(), title: str = "") -> None:
+    """Draw ``slices.png``: one small 2D panel per slice (:mod:`recon3d.viz.multiples`).
+
+    slices : list of recon3d.records.SliceRun -- their reference loops are the true
+        sections drawn in grey (slice frame); none without them.
+    """
+    loops = {(int(s.family), int(s.index)): [np.asarray(lp, float) for lp in s.slice.loops]
+             for s in slices if s.slice is not None}
+    views = slice_views(sensing, metrics)
+    for view in views:
+        view.section = loops.get((view.family, view.index))
+    method = metrics.get("method", "pulling")
+    save_multiples(views, path, title=f"{title}  ·  method {method}".strip(" ·"))
+
+
 def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
-                  title: str = "", png: bool = True) -> list[Path]:
+                  title: str = "", png: bool = True, slices=()) -> list[Path]:
     """Write the outputs of one run into ``out``.
 
     Parameters
@@ -50,7 +71,10 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     sensing, metrics : dict -- the JSON documents.
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
-    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc).
+    png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc) and
+        ``slices.png``.
+    slices : list of recon3d.records.SliceRun -- their motion logs make ``motions.csv``,
+        their true sections go into ``slices.png``.
 
     Returns
     -------
@@ -60,9 +84,11 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     with staged as stage:
         write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
         write_json(stage / "metrics.json", metrics)
+        write_motions(stage / "motions.csv", slices)
         ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
                       np.asarray(surface.face_attributes["label"]))
         blocks.save(str(stage / "scene.vtm"))
         if png:
             _render(blocks, stage / "coverage.png", title)
+            write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
     return staged.written

@@ -17,7 +17,7 @@ keywords of :func:`recon3d.run` but ``jobs``, and ``eps_share``;
 before the first run: a bad manifest is one clear error.
 
 Each job is :func:`run_job` (``recon3d.run`` with ``jobs=1``); its outputs
-go to ``DIR/runs/NNN_<mesh>/`` (``metrics.json``, ``sensing.json``,
+go to ``DIR/runs/NNN_<mesh>/`` (``metrics.json``, ``sensing.json``, ``motions.csv``,
 ``surface.ply``; ``recon3d run`` writes the pictures) and one row per job to
 ``DIR/batch.csv`` (:func:`write_batch`, staged and moved into place at the end).
 """
@@ -39,6 +39,7 @@ from recon3d.api import Result, execute, load_input
 from recon3d.checks import InputError
 from recon3d.config import RunConfig, diagonal, validate
 from recon3d.spellings import BATCH_ONLY, batch_keys, make_config
+from recon3d.io.motions import motions_text
 from recon3d.io.outputs import write_json
 from recon3d.io.ply import write_ply
 from recon3d.io.staged import Staged
@@ -142,7 +143,8 @@ def run_job(job: Job) -> dict:
     Returns
     -------
     dict with ``row`` (the batch.csv row), ``metrics`` and ``sensing`` (the JSON
-    documents) and ``surface`` (vertices (v, 3), faces (f, 3), labels (f,)).
+    documents), ``motions`` (the motions.csv text) and ``surface`` (vertices
+    (v, 3), faces (f, 3), labels (f,)).
     """
     t0 = time.perf_counter()
     with warnings.catch_warnings():
@@ -153,7 +155,7 @@ def run_job(job: Job) -> dict:
         res = execute(mesh, name, config, notes)
     surf = res.surface
     return {"row": job_row(job, res, diag, time.perf_counter() - t0), "metrics": res.metrics,
-            "sensing": res.sensing_document(),
+            "sensing": res.sensing_document(), "motions": motions_text(res.slices),
             "surface": (np.asarray(surf.vertices), np.asarray(surf.faces),
                         np.asarray(surf.face_attributes["label"]))}
 
@@ -185,6 +187,7 @@ def write_batch(out, jobs: list[Job], results: list[dict]) -> list[Path]:
             for key in ("metrics", "sensing"):
                 write_json(d / f"{key}.json", res[key])
             write_ply(d / "surface.ply", *res["surface"])
+            (d / "motions.csv").write_text(res["motions"])
         with open(stage / "batch.csv", "w", newline="") as fh:
             w = csv.DictWriter(fh, COLUMNS)
             w.writeheader()

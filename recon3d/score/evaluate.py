@@ -21,15 +21,23 @@ Definitions (all distances are exact point-to-triangle distances, VTK's
   the slices of the families whose slab holds the sample); a
   reconstruction sample belongs to it when its nearest ground-truth sample
   does. ``reachable`` repeats the metrics on those samples.
-* **touched** -- a ground-truth sample whose nearest reference-contour
-  sample is reachable and lies within eps / 2 of W1 u W2 (the distance of the 2D coverage);
-  ``coverage`` = touched / reachable ground-truth samples.
+* **inside a hole** -- a ground-truth sample whose nearest reference-contour
+  sample lies on a hole of its section (a loop enclosed in the slice plane:
+  no rod in that plane reaches it, §3.2); it is unreachable.
+* ``slab_share`` -- scored ground-truth samples / samples drawn over the whole
+  mesh; ``reachable_share`` -- reachable scored samples / samples drawn over the
+  whole mesh (so ``reachable_share <= slab_share``).
+* ``touched_share`` -- the 2D coverage carried to 3D: the share of the
+  reachable scored samples whose nearest reference-contour sample is within
+  eps / 2 of W1 u W2. It says what the probe touched on the slices, nothing
+  about the surface between them.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+import shapely
 import trimesh
 from scipy.spatial import cKDTree
 
@@ -38,7 +46,7 @@ from recon3d.records import Family
 from recon3d.viz import libs
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",
-           "GroundTruthSamples", "coverage_mesh", "surface_metrics", "distances"]
+           "GroundTruthSamples", "coverage_mesh", "surface_metrics", "distances", "scored_part"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
 """F-score thresholds as shares of the ground truth's bounding-box diagonal."""
@@ -78,6 +86,8 @@ class ContourCloud:
 
     points : (m, 3) float; reachable, covered : (m,) bool; family : (m,) int.
     slabs : Domain -- slab k is family k's (first to last slice).
+    in_hole : (m,) bool or None -- the sample lies on a hole loop of its section
+        (None: on none).
     """
 
     points: np.ndarray
@@ -85,15 +95,19 @@ class ContourCloud:
     covered: np.ndarray
     family: np.ndarray
     slabs: Domain
+    in_hole: np.ndarray | None = field(default=None)
 
     def classify(self, points) -> np.ndarray:
         """(n,) int8 for (n, 3) points: 0 in no family's slab, else the class of
         the nearest sample among the families whose slab holds the point:
-        1 touched, 2 reachable but missed, 3 unreachable."""
+        1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole
+        (unreachable, on a hole loop of the section)."""
         points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
         best = np.full(len(points), np.inf)
         cls = np.zeros(len(points), dtype=np.int8)
         pad = 1e-9 * float(np.ptp(self.points, axis=0).max()) if len(self.points) else 0.0
+        hole = (np.zeros(len(self.points), dtype=bool) if self.in_hole is None
+                else np.asarray(self.in_hole, dtype=bool))
         for k in range(len(self.slabs.lo)):
             sel = np.flatnonzero(self.family == k)
             slab = Domain(self.slabs.normals[k:k + 1], self.slabs.lo[k:k + 1],
@@ -103,11 +117,23 @@ class ContourCloud:
                 continue
             d, i = cKDTree(self.points[sel]).query(points[inside])
             j = sel[i]
-            c = np.where(self.covered[j], 1, np.where(self.reachable[j], 2, 3))
+            c = np.where(self.covered[j], 1, np.where(self.reachable[j], 2,
+                                                      np.where(hole[j], 4, 3)))
             better = d < best[inside]
             best[inside[better]] = d[better]
             cls[inside[better]] = c[better]
         return cls
+
+
+def _on_holes(srun, points) -> np.ndarray:
+    """(m,) bool: which (m, 2) reference samples of a slice lie nearest a hole loop."""
+    holes = np.asarray(srun.slice.holes, dtype=bool)
+    if not holes.any() or not len(points):
+        return np.zeros(len(points), dtype=bool)
+    where = shapely.points(np.asarray(points, dtype=np.float64))
+    d = np.array([shapely.distance(where, shapely.LinearRing(np.asarray(lp, dtype=np.float64)))
+                  for lp in srun.slice.loops])  # (loops, m)
+    return holes[np.argmin(d, axis=0)]
 
 
 def contour_cloud(families: list[Family]) -> ContourCloud:
@@ -116,6 +142,7 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
     families : list of recon3d.records.Family
     """
     pts, reach, cov, fam = [np.zeros((0, 3))], [np.zeros(0, bool)], [np.zeros(0, bool)], []
+    hole = [np.zeros(0, bool)]
     normals, lo, hi = [], [], []
     for k, f in enumerate(families):
         offsets = [s.slice.plane.offset for s in f.slices]
@@ -127,11 +154,12 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
                 pts.append(s.slice.to_3d(s.truth.points))
                 reach.append(s.truth.reachable)
                 cov.append(s.truth.covered)
+                hole.append(_on_holes(s, s.truth.points))
                 fam.append(np.full(len(s.truth.points), k))
     fam = np.concatenate(fam) if fam else np.zeros(0, dtype=np.int64)
     slabs = Domain(np.array(normals).reshape(-1, 3), np.array(lo), np.array(hi))
     return ContourCloud(np.concatenate(pts), np.concatenate(reach), np.concatenate(cov),
-                        fam, slabs)
+                        fam, slabs, np.concatenate(hole))
 
 
 def distances(points, mesh: trimesh.Trimesh) -> np.ndarray:
@@ -183,16 +211,31 @@ class GroundTruthSamples:
         self.mesh = mesh
 
 
-def coverage_mesh(mesh: trimesh.Trimesh, cloud: ContourCloud, max_edge: float) -> trimesh.Trimesh:
-    """Ground truth subdivided to ``max_edge`` with a per-face ``coverage`` class.
+def scored_part(surface: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    """The faces of a labelled surface that are scored: all but the caps (label 5)."""
+    label = np.asarray(surface.face_attributes.get("label", np.zeros(0)), dtype=np.int64)
+    keep = np.flatnonzero(label != 5)
+    return surface.submesh([keep], append=True) if len(keep) else None
+
+
+def coverage_mesh(mesh: trimesh.Trimesh, cloud: ContourCloud, max_edge: float,
+                  surface: trimesh.Trimesh | None = None) -> trimesh.Trimesh:
+    """Ground truth subdivided to ``max_edge`` with a class per face and a distance per vertex.
 
     Classes (:data:`recon3d.records.COVERAGE_CLASSES`): 0 outside every slab,
-    1 touched, 2 reachable but missed, 3 unreachable (see module doc). Returns
-    a trimesh with ``face_attributes['coverage']`` (f,) int8.
+    1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole (module
+    doc). Returns a trimesh with ``face_attributes['coverage']`` (f,) int8 and,
+    given the labelled ``surface``, ``vertex_attributes['distance']`` (v,) float:
+    the distance of each vertex to the scored surface (:func:`scored_part`) in
+    % of the ground truth's bounding-box diagonal (the unit of ``FSCORE_SHARES``).
     """
     v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
     out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
+    if surface is not None:
+        part = scored_part(surface)
+        d = distances(out.vertices, part) if part is not None else np.full(len(v), np.inf)
+        out.vertex_attributes["distance"] = 100.0 * d / diagonal(mesh)
     return out
 
 
@@ -209,12 +252,11 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     Returns
     -------
     metrics : dict -- the ``total.surface`` block (with ``reachable``).
-    extra : dict -- ``coverage``, sample counts and tau values.
+    extra : dict -- ``slab_share``, ``reachable_share``, ``touched_share`` (module
+        doc), sample counts and tau values.
     """
     taus = {k: s * gt.diagonal for k, s in FSCORE_SHARES.items()}
-    label = np.asarray(surface.face_attributes.get("label", np.zeros(0)), dtype=np.int64)
-    scored = surface.submesh([np.flatnonzero(label != 5)], append=True) \
-        if (label != 5).any() else None
+    scored = scored_part(surface)
     rec = _sample(scored, count, seed) if scored is not None else np.zeros((0, 3))
     d_rec = distances(rec, gt.mesh)
     d_gt = distances(gt.points, scored) if scored is not None else np.full(len(gt.points), np.inf)
@@ -227,9 +269,11 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
         rec_reach = np.zeros(len(rec), dtype=bool)
     out = _scores(d_rec, d_gt, taus)
     out["reachable"] = _scores(d_rec[rec_reach], d_gt[reach], taus)
+    drawn = max(int(gt.drawn), 1)
     extra = {
-        "coverage": float((cls == 1).sum() / reach.sum()) if reach.any() else None,
-        "reachable_share": float(reach.mean()) if len(reach) else None,
+        "slab_share": len(gt.points) / drawn,
+        "reachable_share": float(reach.sum()) / drawn,
+        "touched_share": float((cls == 1).sum() / reach.sum()) if reach.any() else None,
         "samples": {"ground_truth_drawn": int(gt.drawn), "ground_truth": int(len(gt.points)),
                     "reconstruction": int(len(rec)), "seeds": [0, seed]},
         "tau": taus,

@@ -1,18 +1,23 @@
-"""The 3D scores of a run: the whole surface and what each added family gains.
+"""The 3D scores of a run: the fused surface and each family's own surface.
 
-``score`` compares the surface with the ground truth
-(:mod:`recon3d.score.evaluate`) and, with several families, scores the
-fusion of the first k families in the final domain for k = 1, 2, ...
+``score`` compares the surface the user gets with the ground truth
+(:mod:`recon3d.score.evaluate`) over the union of the slabs and, with
+several families, scores each family's own surface (the one a run along
+that axis alone would give) over its own slab, so the summary compares
+surfaces a user can see: the fused one against the best single family.
 """
 from __future__ import annotations
 
-from recon3d.records import MeshRun
+from recon3d.records import Family, MeshRun
 from recon3d.score.evaluate import (FSCORE_SHARES, SAMPLES, Domain, GroundTruthSamples,
                                     contour_cloud, surface_metrics)
 from recon3d.surface.reconstruct import Reconstruction
 from recon3d.surface.solid import fuse
 
-__all__ = ["score", "domain"]
+__all__ = ["score", "domain", "SHARES"]
+
+SHARES = ("slab_share", "reachable_share", "touched_share")
+"""The shares of the ground truth that go with every scored surface (evaluate's module doc)."""
 
 
 def domain(recon: Reconstruction) -> Domain | None:
@@ -21,11 +26,25 @@ def domain(recon: Reconstruction) -> Domain | None:
     return Domain.of(solids) if solids else None
 
 
-def _gain(new: dict, old: dict) -> dict:
-    keys = {"coverage": (new["coverage"], old["coverage"]),
-            "fscore_1%": (new["surface"]["fscore"]["1%"], old["surface"]["fscore"]["1%"]),
-            "chamfer_l1": (new["surface"]["chamfer_l1"], old["surface"]["chamfer_l1"])}
-    return {k: (None if a is None or b is None else a - b) for k, (a, b) in keys.items()}
+def _entry(surface: dict | None, extra: dict | None) -> dict:
+    """One scored surface: its shares of the ground truth and its ``total.surface`` block."""
+    out = {k: (None if extra is None else extra[k]) for k in SHARES}
+    out["surface"] = surface
+    return out
+
+
+def _own(run: MeshRun, fam: Family, solid, samples: int) -> dict:
+    """A family's own surface (its solid alone) scored over its own slab."""
+    if solid is None:
+        return _entry(None, None)
+    gt = GroundTruthSamples(run.mesh, Domain.of([solid]), samples)
+    surface, extra = surface_metrics(fuse([solid], run.mesh.bounds), gt,
+                                     contour_cloud([fam]), samples)
+    return _entry(surface, extra)
+
+
+def _f1(entry: dict) -> float | None:
+    return ((entry.get("surface") or {}).get("fscore") or {}).get("1%")
 
 
 def score(run: MeshRun, recon: Reconstruction,
@@ -35,7 +54,10 @@ def score(run: MeshRun, recon: Reconstruction,
     Returns
     -------
     surface : dict or None -- the ``total.surface`` block (None without a surface).
-    info : dict -- domain, tau, sample counts, 3D coverage and per-family gains
+    info : dict -- domain, tau, sample counts, the shares of the ground truth
+        (``slab_share``, ``reachable_share``, ``touched_share``), and per family
+        its own surface scored over its own slab (``families``) with, for 2+
+        families, ``fused_vs_best``: fused F@1% minus the best family's own F@1%
         (the ``surface_eval`` block of metrics.json).
     """
     dom = domain(recon)
@@ -48,18 +70,16 @@ def score(run: MeshRun, recon: Reconstruction,
     gt = GroundTruthSamples(run.mesh, dom, samples)
     surface, extra = surface_metrics(recon.surface, gt, contour_cloud(run.families), samples)
     info.update(extra)
+    several = len(run.families) > 1
     families = []
-    for k, fam in enumerate(run.families):
-        if k == len(run.families) - 1:
-            entry_surface, entry_extra = surface, extra
-        else:
-            part = fuse(recon.solids[:k + 1], run.mesh.bounds)
-            cloud = contour_cloud(run.families[:k + 1])
-            entry_surface, entry_extra = surface_metrics(part, gt, cloud, samples)
-        entry = {"axis": fam.label, "slices": len(fam.slices),
-                 "coverage": entry_extra["coverage"], "surface": entry_surface}
-        if families:
-            entry["gain"] = _gain(entry, families[-1])
-        families.append(entry)
+    for fam, solid in zip(run.families, recon.solids):
+        entry = _own(run, fam, solid, samples) if several else _entry(surface, extra)
+        families.append({"axis": fam.label, "slices": len(fam.slices), **entry})
     info["families"] = families
+    if several:
+        own = [(f1, fam["axis"]) for fam in families if (f1 := _f1(fam)) is not None]
+        fused = surface["fscore"]["1%"]
+        best = max(own, default=None)
+        info["fused_vs_best"] = None if best is None or fused is None else {
+            "axis": best[1], "fscore_1%": fused - best[0]}
     return surface, info

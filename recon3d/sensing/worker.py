@@ -40,6 +40,7 @@ class SenseSettings:
     eps, tol : float -- the paper's eps and the contact resolution.
     backend : str -- one of ``slicer.BACKENDS`` ('embree', 'exact', 'trimesh').
     max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
+    method : str -- the planner's flow, ``'pulling'`` or ``'paper'``.
     noise, taxel : float -- the sensor's noise and taxel spacing, in eps
         (:mod:`core2d.sim.sensor`; 0: perfect sensing).
     seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
@@ -52,6 +53,7 @@ class SenseSettings:
     backend: str
     max_motions: int
     bootstrap: int
+    method: str = "pulling"
     noise: float = 0.0
     taxel: float = 0.0
     seed: int = 0
@@ -150,7 +152,7 @@ class WorkerState:
         sensor = st.sensor(family, index)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
                                     max_motions=st.max_motions, bootstrap_count=st.bootstrap,
-                                    sensor=sensor)
+                                    method=st.method, sensor=sensor)
         if not cut.loops or cut.open_chains:
             return SliceRun(None, family, index, result, no_reference_metrics(result, st),
                             workspace, ContourTruth.empty())

@@ -11,6 +11,12 @@ Blocks, all in world coordinates:
   (1 W1, 2 W2, 3 W3, 4 unknown: :data:`recon3d.records.CURVE_CLASSES`),
   ``family`` and ``slice``.
 
+``ground_truth`` also carries the point array ``distance`` (to the scored
+surface, % of the diagonal) when the run was scored; the multiblock's field
+data holds ``headline`` (text lines of the scores), ``axes`` (family labels)
+and ``normals`` ((k, 3) family normals), so ``recon3d show`` draws what
+coverage.png shows.
+
 Plain data: drawing is in :mod:`recon3d.viz.plot`.
 """
 from __future__ import annotations
@@ -61,24 +67,32 @@ def _polydata(mesh: trimesh.Trimesh, name: str):
         return libs.pyvista().PolyData()
     out = libs.polydata(mesh)
     out.cell_data[name] = np.asarray(mesh.face_attributes[name]).astype(np.int32)
+    if "distance" in mesh.vertex_attributes:
+        out.point_data["distance"] = np.asarray(mesh.vertex_attributes["distance"], float)
     return out
 
 
 def scene_blocks(ground_truth: trimesh.Trimesh, surface: trimesh.Trimesh,
-                 slice_runs: list[SliceRun]):
-    """pyvista.MultiBlock with ``ground_truth``, ``surface`` and ``curves``.
+                 slice_runs: list[SliceRun], headline=(), normals=(), axes=()):
+    """pyvista.MultiBlock with ``ground_truth``, ``surface`` and ``curves`` (module doc).
 
     Parameters
     ----------
-    ground_truth : trimesh.Trimesh with ``face_attributes['coverage']``
+    ground_truth : trimesh.Trimesh with ``face_attributes['coverage']`` and
+        optionally ``vertex_attributes['distance']``
         (:func:`recon3d.score.evaluate.coverage_mesh`).
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     slice_runs : list of recon3d.records.SliceRun
+    headline : list of str -- text lines drawn into the picture.
+    normals : (k, 3) float; axes : list of str -- the families' normals and labels.
     """
     blocks = libs.pyvista().MultiBlock()
     blocks["ground_truth"] = _polydata(ground_truth, "coverage")
     blocks["surface"] = _polydata(surface, "label")
     blocks["curves"] = curves_polydata(slice_runs)
+    blocks.field_data["headline"] = np.array(list(headline) or [""])
+    blocks.field_data["axes"] = np.array(list(axes) or [""])
+    blocks.field_data["normals"] = np.asarray(normals, dtype=np.float64).reshape(-1, 3)
     return blocks
 
 

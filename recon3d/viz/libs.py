@@ -4,7 +4,8 @@ Both load slowly and only some runs need them, so they are imported here,
 lazily, and nowhere else in recon3d: the pictures (:mod:`recon3d.viz`),
 VTK's flying edges (:mod:`recon3d.surface.solid`), VTK's exact distances
 (:mod:`recon3d.score.evaluate`) and the charts of ``recon3d bench``
-(:mod:`recon3d.benchmark.charts`, the one user of matplotlib) come through these functions, so
+(:mod:`recon3d.benchmark.charts`) and the 2D slice figures (:mod:`recon3d.viz.figure2d`) come
+through these functions, so
 ``import recon3d`` loads neither.
 """
 from __future__ import annotations
@@ -14,7 +15,7 @@ import types
 import numpy as np
 import trimesh
 
-__all__ = ["pyvista", "polydata", "pyplot", "ticker"]
+__all__ = ["pyvista", "polydata", "pyplot", "ticker", "collections", "lines", "pil_image"]
 
 
 def pyvista() -> types.ModuleType:
@@ -45,3 +46,27 @@ def ticker() -> types.ModuleType:
     import matplotlib.ticker as t  # lazy: matplotlib is slow to load
 
     return t
+
+
+def collections() -> types.ModuleType:
+    """matplotlib.collections (the line collections of the 2D slice figures)."""
+    pyplot()  # the Agg backend first
+    import matplotlib.collections as c  # lazy: matplotlib is slow to load
+
+    return c
+
+
+def lines() -> types.ModuleType:
+    """matplotlib.lines (legend handles of the 2D slice figures)."""
+    pyplot()
+    import matplotlib.lines as m  # lazy: matplotlib is slow to load
+
+    return m
+
+
+
+def pil_image() -> types.ModuleType:
+    """PIL.Image (matplotlib's own dependency): the GIF frames of ``recon3d figure --animate``."""
+    from PIL import Image  # lazy: only an animation needs it
+
+    return Image

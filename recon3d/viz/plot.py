@@ -1,10 +1,15 @@
-"""The coverage picture: two pyvista panels drawn from a scene multiblock.
+"""The coverage picture: two pyvista panels and a headline drawn from a scene multiblock.
 
 (a) the reconstructed surface coloured by face label, the sensed slice
-curves coloured W1/W2/W3/unknown, and the ground truth as a translucent
-ghost; (b) the ground truth coloured touched / reachable but missed /
-unreachable (outside the slab in light grey). Integer codes are mapped to
-colours explicitly (string categories would be coloured alphabetically).
+curves coloured W1/W2/W3/unknown on top, and an arrow per slicing axis;
+(b) the ground truth coloured by its distance to the scored surface, in %
+of the diagonal (the F-score's tau at 1% and 2% are bin edges of the colour
+bar), with the ground truth outside the slab see-through grey and the
+ground truth inside a hole of the section (no rod in the slice plane reaches
+it) in its own colour. Below both: the headline scores of the run. Both
+panels share one camera fitted to the object (:func:`recon3d.viz.view.fit_view`)
+and carry an axis triad. Integer codes are mapped to colours explicitly
+(string categories would be coloured alphabetically).
 """
 from __future__ import annotations
 
@@ -12,19 +17,30 @@ import ctypes
 import ctypes.util
 import functools
 import os
+import textwrap
 from pathlib import Path
 
 import numpy as np
 
 from recon3d.records import COVERAGE_CLASSES, CURVE_CLASSES, LABELS
 from recon3d.viz import libs
+from recon3d.viz.view import fit_view
 
-__all__ = ["LABEL_COLORS", "CURVE_COLORS", "COVERAGE_COLORS", "VIEW", "hex_rgb",
-           "prepare_offscreen", "coverage_plotter", "save_png", "has_display"]
+__all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "DISTANCE_COLORS",
+           "DISTANCE_MAX", "WIDTH", "hex_rgb", "prepare_offscreen", "coverage_plotter",
+           "save_png", "has_display"]
 
-LABEL_COLORS = {1: "#4c8fd6", 2: "#3cb44b", 3: "#e6194b", 4: "#cfcfcf", 5: "#c9a36b"}
-CURVE_COLORS = {1: "#08306b", 2: "#00441b", 3: "#a50f15", 4: "#ff7f0e"}
-COVERAGE_COLORS = {0: "#e8e8e8", 1: "#2ca02c", 2: "#ff7f0e", 3: "#6a51a3"}
+LABEL_COLORS = {1: "#3a7fd5", 2: "#4daf4a", 3: "#e41a1c", 4: "#d4d4d4", 5: "#c9a36b"}
+"""Face label -> colour of panel (a)."""
+CURVE_COLORS = {1: "#000000", 2: "#a6611a", 3: "#ffd92f", 4: "#ff00ff"}
+"""Curve class -> colour: black W1 lines on the blue W1 faces, magenta unknown chords."""
+OUTSIDE_COLOR, HOLE_COLOR = "#bdbdbd", "#2b8cbe"
+"""Panel (b): ground truth outside the slab (see-through), inside a hole of the section."""
+DISTANCE_COLORS = ("#1a9850", "#91cf60", "#fee08b", "#fc8d59", "#d73027", "#a50026")
+"""Bins of 0.5% of the diagonal from 0 to DISTANCE_MAX; beyond it ``DISTANCE_ABOVE``."""
+DISTANCE_MAX, DISTANCE_ABOVE = 3.0, "#40004b"
+WIDTH = 140
+"""Characters of a headline line in the picture (longer lines end in ``...``)."""
 
 
 def has_display() -> bool:
@@ -91,27 +107,18 @@ def _categorical(plotter, mesh, array, colors, **kwargs):
     plotter.add_mesh(mesh, scalars=rgb, rgb=True, preference="cell", **kwargs)
 
 
-def _legend(plotter, entries, size):
-    """A legend box with black text (vtkLegendBoxActor colours text like the symbol)."""
-    legend = plotter.add_legend([[name, color] for name, color in entries], bcolor="white",
-                                face="rectangle", size=size, loc="upper left", border=True)
-    for i in range(legend.GetNumberOfEntries()):
-        legend.SetEntryColor(i, 0.0, 0.0, 0.0)
-        legend.SetEntrySymbol(i, _swatch(entries[i][1]))
-    return legend
-
-
-def _swatch(color):
-    """A filled square in ``color`` as a legend symbol (vtkPolyData with colours)."""
-    pv = libs.pyvista()
-    sq = pv.Rectangle([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).triangulate()
-    sq.cell_data["rgb"] = np.tile((255 * np.array(hex_rgb(color))).astype(np.uint8),
-                                  (sq.n_cells, 1))
-    return sq
-
-
-VIEW = (0.45, 0.6, 1.0)
-"""Camera direction (towards the camera) of both panels; +y is up (the scenes' convention)."""
+def _legend(plotter, entries, top: float = 0.89, step: float = 0.04):
+    """A legend in the panel's top-left corner: per entry a swatch (a text box of spaces on a
+    background of the colour, edged in grey), a gap, then black text."""
+    for k, (name, color) in enumerate(entries):
+        y = top - step * k
+        swatch = plotter.add_text("    ", position=(0.02, y), viewport=True, font_size=9)
+        prop = swatch.GetTextProperty()
+        prop.SetBackgroundColor(*hex_rgb(color))
+        prop.SetBackgroundOpacity(1.0)
+        prop.SetFrame(True)
+        prop.SetFrameColor(0.45, 0.45, 0.45)
+        plotter.add_text(name, position=(0.075, y), viewport=True, font_size=9, color="black")
 
 
 def _split(mesh, array, codes):
@@ -120,8 +127,28 @@ def _split(mesh, array, codes):
     return mesh.extract_cells(np.flatnonzero(keep)), mesh.extract_cells(np.flatnonzero(~keep))
 
 
-def _panel_a(p, surf, gt, curves, title):
-    p.add_text(f"(a) reconstruction {title}".rstrip(), font_size=14, color="black")
+def _arrows(p, blocks, bounds):
+    """One arrow per slicing axis beside the object, labelled ``slices along z``."""
+    pv = libs.pyvista()
+    normals = np.asarray(blocks.field_data["normals"], dtype=float).reshape(-1, 3) \
+        if "normals" in blocks.field_data.keys() else np.zeros((0, 3))
+    axes = [str(a) for a in blocks.field_data["axes"]] if "axes" in blocks.field_data.keys() \
+        else []
+    lo, hi = np.asarray(bounds[::2]), np.asarray(bounds[1::2])
+    size = float(np.linalg.norm(hi - lo))
+    for n, name in zip(normals, axes):
+        start = lo - 0.06 * size * (1.0 - np.abs(n))
+        p.add_mesh(pv.Arrow(start=start, direction=n, scale=0.35 * size, shaft_radius=0.025,
+                            tip_radius=0.07), color="#202020")
+        p.add_point_labels([start + 0.37 * size * n], [f"slicing axis {name}"], font_size=12,
+                           text_color="black", shape_color="white", shape_opacity=0.7,
+                           show_points=False, always_visible=True)
+
+
+def _panel_a(p, blocks):
+    surf, curves = blocks["surface"], blocks["curves"]
+    p.add_text("(a) reconstructed surface, by face label", font_size=11, color="black",
+               position="upper_edge")
     entries = []
     if surf.n_cells:
         caps, body = _split(surf, "label", {5})
@@ -130,67 +157,99 @@ def _panel_a(p, surf, gt, curves, title):
         if caps.n_cells:  # see-through: caps are where a slab ends, not object surface
             _categorical(p, caps, "label", LABEL_COLORS, ambient=0.25, opacity=0.35)
         present = set(np.unique(surf.cell_data["label"]).tolist())
-        entries = [(f"{c} {LABELS[c]}", LABEL_COLORS[c]) for c in sorted(LABELS) if c in present]
-    if gt.n_cells:
-        p.add_mesh(gt, color="#9a9a9a", opacity=0.08, style="surface")
+        entries = [(f"face: {LABELS[c]}", LABEL_COLORS[c]) for c in sorted(LABELS)
+                   if c in present]
     if curves.n_cells:
         _categorical(p, curves, "class", CURVE_COLORS, line_width=2)
         seen = set(np.unique(curves.cell_data["class"]).tolist())
-        entries += [(f"curve {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
-    entries.append(("ground truth (ghost)", "#9a9a9a"))
-    _legend(p, entries, (0.24, 0.3))
+        entries += [(f"slice curve: {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
+    _legend(p, entries)
+    _arrows(p, blocks, blocks.bounds)
 
 
 def _panel_b(p, gt):
-    p.add_text("(b) ground truth coverage", font_size=14, color="black")
+    pv = libs.pyvista()
+    p.add_text("(b) ground truth, by distance to the surface", font_size=11, color="black",
+               position="upper_edge")
     if not gt.n_cells:
         return
     outside, inside = _split(gt, "coverage", {0})
-    if inside.n_cells:
-        _categorical(p, inside, "coverage", COVERAGE_COLORS, ambient=0.25)
+    hole, scored = _split(inside, "coverage", {4})
+    entries = []
+    if scored.n_cells and "distance" in scored.point_data.keys():
+        p.add_mesh(scored, scalars="distance", cmap=list(DISTANCE_COLORS), clim=[0, DISTANCE_MAX],
+                   n_colors=len(DISTANCE_COLORS), above_color=DISTANCE_ABOVE, ambient=0.25,
+                   show_scalar_bar=False)
+        p.add_text("distance to the surface, % of the diagonal (F@1% counts < 1)",
+                   position=(0.2, 0.135), viewport=True, font_size=9, color="black")
+        p.add_scalar_bar(" ", n_labels=7, fmt="%.1f", vertical=False, color="black",
+                         position_x=0.2, position_y=0.04, width=0.6, height=0.08,
+                         title_font_size=14, label_font_size=13, above_label="> 3")
+        entries.append(("beyond 3% of the diagonal", DISTANCE_ABOVE))
+    elif scored.n_cells:
+        p.add_mesh(scored, color="#9a9a9a", ambient=0.25)
+    if hole.n_cells:
+        p.add_mesh(hole, color=HOLE_COLOR, ambient=0.25)
+        entries.append(("inside a hole (no rod in the slice plane reaches it)", HOLE_COLOR))
     if outside.n_cells:
-        _categorical(p, outside, "coverage", COVERAGE_COLORS, ambient=0.25, opacity=0.3)
-    shown = set(np.unique(gt.cell_data["coverage"]).tolist())
-    _legend(p, [(COVERAGE_CLASSES[c], COVERAGE_COLORS[c]) for c in sorted(shown)],
-            (0.24, 0.14))
+        p.add_mesh(outside, color=OUTSIDE_COLOR, opacity=0.3)
+        entries.append(("outside the slab (not scored)", OUTSIDE_COLOR))
+    _legend(p, entries)
+    return pv
+
+
+def _headline(p, blocks, title):
+    lines = [str(s) for s in blocks.field_data["headline"]] \
+        if "headline" in blocks.field_data.keys() else []
+    lines = [textwrap.shorten(s, WIDTH, placeholder=" ...") for s in lines if s] or [title]
+    p.add_text("\n".join(lines), position=(0.01, 0.04), viewport=True, font_size=9,
+               color="black", font="courier")
 
 
 def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
                      window_size=(1600, 800)):
-    """A two-panel ``pyvista.Plotter`` of a scene (see module doc).
-
-    Caps and the ground truth outside the slab are drawn see-through, so the
-    sensed part shows through the slab ends.
+    """The two panels and the headline of a scene (module doc) as a ``pyvista.Plotter``.
 
     Parameters
     ----------
     blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks` or a read ``scene.vtm``.
-    title : str -- shown above panel (a).
+    title : str -- the headline when the scene carries none.
     off_screen : bool
     window_size : (2,) int
     """
     pv = libs.pyvista()
-    gt, surf, curves = blocks["ground_truth"], blocks["surface"], blocks["curves"]
-    p = pv.Plotter(shape=(1, 2), off_screen=off_screen, window_size=list(window_size),
-                   border=False)
+    p = pv.Plotter(shape=(2, 2), groups=[(1, np.s_[:])], row_weights=[4, 1],
+                   off_screen=off_screen, window_size=list(window_size), border=False)
     p.set_background("white")
     p.subplot(0, 0)
-    _panel_a(p, surf, gt, curves, title)
+    _panel_a(p, blocks)
+    p.add_axes(color="black", line_width=3, viewport=(0.0, 0.0, 0.14, 0.2))
     p.subplot(0, 1)
-    _panel_b(p, gt)
-    p.link_views()
-    p.view_vector(VIEW, viewup=(0.0, 1.0, 0.0))
-    p.camera.zoom(0.8)
-    _pan_down(p.camera, 0.12)
+    _panel_b(p, blocks["ground_truth"])
+    p.add_axes(color="black", line_width=3, viewport=(0.0, 0.0, 0.14, 0.2))
+    p.subplot(1, 0)
+    _headline(p, blocks, title)
+    p.subplot(0, 0)
+    p.link_views((0, 1))
+    direction, up, _ = fit_view(np.asarray(blocks["ground_truth"].bounds).reshape(3, 2).T
+                                if blocks["ground_truth"].n_cells else
+                                np.asarray(blocks.bounds).reshape(3, 2).T)
+    p.view_vector(direction, viewup=up)
+    p.reset_camera()
+    p.camera.zoom(0.95)
+    _pan(p.camera, 0.08, 0.1)
     return p
 
 
-def _pan_down(camera, share: float) -> None:
-    """Move the picture down by ``share`` of the view height (room for the legends)."""
+def _pan(camera, down: float, right: float) -> None:
+    """Move the picture down and right by shares of the view height (room for the legends)."""
     up = np.asarray(camera.up, dtype=float)
+    up /= np.linalg.norm(up)
     pos, focal = np.asarray(camera.position), np.asarray(camera.focal_point)
+    across = np.cross(focal - pos, up)
+    across /= np.linalg.norm(across)
     height = 2.0 * np.linalg.norm(pos - focal) * np.tan(np.radians(camera.view_angle) / 2)
-    shift = share * height * up / np.linalg.norm(up)
+    shift = height * (down * up - right * across)
     camera.position = tuple(pos + shift)
     camera.focal_point = tuple(focal + shift)
 

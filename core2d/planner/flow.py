@@ -1,0 +1,59 @@
+"""Which flow the planner runs: the paper's Fig. 16 alone, or with the additions.
+
+The paper's steps -- bootstrap from F, Dist(A_i, B_i) < eps -> W2, single
+probe detection (Fig. 6), Theorem 1's initial pass, the bisection of §4.2.2,
+the tracing of §4.3 with the registration rule of §4.3.3, the infinite loop
+escape of §4.4 -- are the same code in both methods. The default
+(``pulling``) adds machinery the paper does not have, each behind one switch
+of :class:`Flow`:
+
+* ``map`` -- the robot's own map of what it recorded
+  (:class:`~core2d.planner.known.KnownContour`): an area whose C_A^B was
+  traced through other areas is closed as traced; a pass touching recorded
+  contour is a dead end;
+* ``defer`` -- a dead end (no pass, a pass finding no new contact) is
+  deferred instead of becoming W3 on the spot as §4.2.1 says;
+* ``w3_proof`` -- Area(G_i) = 0 gives W3 only when the map proves that no
+  line from F crosses the lid;
+* ``revisit`` -- deferred areas are looked at again
+  (:mod:`core2d.planner.revisit`);
+* ``audit`` -- contour no area holds any more is registered again
+  (:mod:`core2d.planner.audit`).
+
+``paper`` switches all of them off: Fig. 16 only. Why a configuration of one
+planner and not a second driver: the paper's steps are the bulk of the
+planner (:class:`core2d.planner.run.Exploration`), and a second copy of them
+would drift; the additions are a handful of branches, and naming each
+behind a switch keeps the paper's flow readable in ``Exploration.process``
+and lets the tests prove each switch unreachable with ``paper``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Flow", "PULLING", "PAPER", "FLOWS"]
+
+
+@dataclass(frozen=True)
+class Flow:
+    """The planner's additions to Fig. 16, each on (True) or off."""
+
+    map: bool = True
+    defer: bool = True
+    w3_proof: bool = True
+    revisit: bool = True
+    audit: bool = True
+
+    def __post_init__(self):
+        if (self.w3_proof or self.revisit or self.audit) and not self.map:
+            raise ValueError("w3_proof, revisit and audit need the map")
+
+
+PULLING = Flow()
+"""The default: Fig. 16 with every addition."""
+
+PAPER = Flow(map=False, defer=False, w3_proof=False, revisit=False, audit=False)
+"""The paper's Fig. 16 alone: dead ends and Area(G_i) = 0 are W3 (§4.2.1)."""
+
+FLOWS = {"pulling": PULLING, "paper": PAPER}
+"""Method name -> flow."""

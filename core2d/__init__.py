@@ -24,8 +24,9 @@ from core2d.result import AreaRecord, SenseStats, SliceResult
 from core2d.sense import sense_slice
 from core2d.sim.contact import ContactModel
 from core2d.sim.probe import Probe
+from core2d.sim.sensor import SensorModel
 
 __all__ = [
     "ContactModel", "Probe", "Contact", "Reading", "sense_slice",
-    "SliceResult", "SenseStats", "AreaRecord", "Resolution",
+    "SliceResult", "SenseStats", "AreaRecord", "Resolution", "SensorModel",
 ]

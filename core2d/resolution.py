@@ -2,7 +2,9 @@
 
 The robot is told two lengths (§3.2): the paper's epsilon -- the contour is
 smooth at that scale and areas with Dist(A, B) < eps are W2 -- and the
-contact resolution ``tol``. Every other tolerance of the simulator, the
+contact resolution ``tol``; a robot with real sensors is also told their
+data sheet (:class:`core2d.sim.sensor.SensorModel`): the standard deviation
+``noise`` of its contact and joint readings and its ``taxel`` spacing. Every other tolerance of the simulator, the
 planner and the ground truth follows from them here, so that all three rooms
 of core2d agree on what "the same point" means.
 """
@@ -18,6 +20,8 @@ class Resolution:
     """The robot's stated resolution: ``eps`` and ``tol`` and what follows.
 
     Build it with :meth:`of`, which fills in the default ``tol = eps / 20``.
+    ``noise`` and ``taxel`` are the sensor's stated figures (0: the paper's
+    perfect sensing).
 
     Examples
     --------
@@ -28,18 +32,54 @@ class Resolution:
 
     eps: float
     tol: float
+    noise: float = 0.0
+    taxel: float = 0.0
 
     @classmethod
-    def of(cls, eps: float, tol: float | None = None) -> Resolution:
-        """``Resolution(eps, tol)`` with the default contact resolution eps / 20."""
-        return cls(float(eps), float(tol if tol is not None else eps / 20.0))
+    def of(cls, eps: float, tol: float | None = None, noise: float = 0.0,
+           taxel: float = 0.0) -> Resolution:
+        """``Resolution(eps, tol, noise, taxel)`` with the default contact
+        resolution eps / 20."""
+        return cls(float(eps), float(tol if tol is not None else eps / 20.0), float(noise),
+                   float(taxel))
+
+    @property
+    def sensor_tol(self) -> float:
+        """eps / 2 + 2 noise: the distance within which a reported point
+        stands for the contour (the metric tolerance of a noisy sensor)."""
+        return self.eps / 2.0 + 2.0 * self.noise
+
+    @property
+    def jitter(self) -> float:
+        """How far apart two readings of one point may lie: three standard
+        deviations of the difference of two noisy readings (3 sqrt(2) noise)
+        plus one taxel. 0 for the paper's perfect sensing, so every
+        tolerance below is then the paper's own."""
+        return 3.0 * 2.0 ** 0.5 * self.noise + self.taxel
 
     @property
     def tip_zone(self) -> float:
-        """eps / 2: contacts closer than this are one contact at the paper's
-        resolution (the same-point radius); near the tip they are the tip's
-        contact, and a contact point moving farther in one step jumped."""
-        return self.eps / 2.0
+        """eps / 2 (+ :attr:`jitter`): contacts closer than this are one
+        contact at the paper's resolution (the same-point radius); near the
+        tip they are the tip's contact, and a contact point moving farther in
+        one step jumped. Readings of one point scatter by the jitter, so
+        the radius grows by it: two readings of one contact stay one."""
+        return self.eps / 2.0 + self.jitter
+
+    @property
+    def hop(self) -> float:
+        """eps / 4 (+ :attr:`jitter`): a traced step longer than this is not
+        a micro-step of the trace (a hop, ``core2d.planner.tracing``); the
+        scatter of two noisy readings is no hop."""
+        return self.fan_spacing + self.jitter
+
+    @property
+    def w2_dist(self) -> float:
+        """eps (+ :attr:`jitter`): Dist(A_i, B_i) below which an area is W2
+        (§3.1). Its ends are readings: a gap narrower than eps may read up
+        to the jitter wider. The chord then stays within (eps + jitter) / 2
+        of the contour, about the sensor's tolerance eps / 2 + 2 noise."""
+        return self.eps + self.jitter
 
     @property
     def fan_spacing(self) -> float:
@@ -55,9 +95,9 @@ class Resolution:
 
     @property
     def near(self) -> float:
-        """2 tol: a point this close to the probe or to recorded contour is
-        on it (contact noise)."""
-        return 2 * self.tol
+        """2 tol (+ :attr:`jitter`): a point this close to the probe or to
+        recorded contour is on it (contact noise)."""
+        return 2 * self.tol + self.jitter
 
     @property
     def metric_tol(self) -> float:

@@ -34,7 +34,10 @@ class AreaRecord:
         What created it: ``"bootstrap"``, ``"case2-1"``, ``"case2-2"``,
         ``"case2-3"``, ``"case3"``, ``"case4"``, ``"fig12c"``, ``"one-sided"``
         (Theorem 4 (B)/(C): the side not traced), ``"left"`` (a trace left
-        the area through its other end), ``"escape"``, ``"revisit"`` (a pass
+        the area through its other end), ``"hop"`` (the tip of a trace
+        hopped over a gap -- a step longer than eps / 4 that turns concave,
+        or Case 1 passing P_fin across a gap: the contour between was not
+        traced), ``"escape"``, ``"revisit"`` (a pass
         through a deferred lid found a new contact), ``"limit"``.
     outcome : str
         How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,

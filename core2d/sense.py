@@ -17,6 +17,7 @@ from core2d.result import SliceResult
 from core2d.sim.contact import ContactModel
 from core2d.sim.probe import Probe
 from core2d.sim.recorder import Recorder
+from core2d.sim.sensor import SensorModel
 
 __all__ = ["sense_slice", "METHODS"]
 
@@ -26,7 +27,8 @@ METHODS = ("pulling", "paper", "finger")
 def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: float | None = None,
                 tol: float | None = None, max_motions: int = 20000, max_areas: int = 4000,
                 bootstrap_count: int = 12, method: str = "pulling", directions: int = 32,
-                spacing: float | None = None) -> SliceResult:
+                spacing: float | None = None, sensor: SensorModel | None = None
+                ) -> SliceResult:
     """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
@@ -46,6 +48,8 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
         (:func:`core2d.planner.finger.finger_probe`).
     directions, spacing : finger probing only -- insertion directions and
         line spacing (default eps / 2).
+    sensor : SensorModel, optional -- noise and taxels of the readings
+        (:mod:`core2d.sim.sensor`); default the paper's perfect sensing.
 
     Returns
     -------
@@ -53,7 +57,7 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    probe = Recorder(Probe(contact, workspace, eps, probe_length, tol))
+    probe = Recorder(Probe(contact, workspace, eps, probe_length, tol, sensor))
     if method == "finger":
         result = finger_probe(probe, eps, directions, spacing, max_motions)
     else:

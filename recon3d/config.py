@@ -160,6 +160,32 @@ class RunConfig:
         f"including, eps)",
         doc=((f"contact resolution; must lie in **[eps / {1 / TOL_SHARE:g}, "
               f"eps)**"),))
+    noise: float = _param(
+        0.0, parse=float, metavar="S", shown_default="0",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="sensor noise: Gaussian, standard deviation S x eps on every contact position and "
+        "on the joint position reading (S x eps / probe length on its direction); default 0, "
+        "the paper's perfect sensing",
+        doc=(("sensor noise (`core2d.sim.sensor`): Gaussian with standard deviation S × eps on "
+              "every reported contact and on the joint position reading, S × eps / probe "
+              "length (radians) on the probe direction; the planner is told S, and "
+              "`metrics.json` adds coverage and precision within eps / 2 + 2 S × eps "
+              "(`*_sensor`)"),))
+    taxel: float = _param(
+        0.0, parse=float, metavar="T", shown_default="0",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="taxel spacing T x eps: a contact is reported at the centre of the tactile element "
+        "holding it, the tip being one (default 0: a continuous skin)",
+        doc=(("tactile elements T × eps apart along the probe: a contact is reported at the "
+              "centre of its element, the tip being an element of its own; the planner is "
+              "told T"),))
+    seed: int = _param(
+        0, parse=int, metavar="N", shown_default="0",
+        check=lambda v, n: at_least(v, n, low=0),
+        help="seed of the sensor noise (default 0; each slice draws from its own stream, so "
+        "results do not depend on --jobs)",
+        doc=(("seed of the sensor noise; each slice has its own stream (seed, family, "
+              "plane), so the results do not depend on `--jobs`"),))
     backend: str = _param(
         "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=check_backend,
         help="contact backend (default embree; trimesh: its generic ray engine, slow)",

@@ -155,9 +155,15 @@ def proof_lines(run: Exploration, area):
                                 min_gap=run.angle_tol)
 
 
-def _near_end(run: Exploration, area, point) -> bool:
-    """Within eps/2 of A_i or B_i: the same contact at the paper's resolution."""
-    return min(np.hypot(*(point - area.a)), np.hypot(*(point - area.b))) <= run.res.tip_zone
+def _near_end(run: Exploration, area, point, radius=None) -> bool:
+    """Within ``radius`` (default the same-contact radius, eps/2 + the
+    sensor's jitter) of A_i or B_i: the same contact at the paper's
+    resolution. The W3 of step 5 asks for the sensor's tolerance
+    eps/2 + 2 noise instead (:attr:`~core2d.resolution.Resolution.sensor_tol`,
+    eps/2 for perfect sensing): a pass ending farther is not read as a
+    graze of an end, so noise never proves W3 (the area stays unknown)."""
+    radius = run.res.tip_zone if radius is None else radius
+    return min(np.hypot(*(point - area.a)), np.hypot(*(point - area.b))) <= radius
 
 
 def _new_contact(run: Exploration, area, point) -> bool:
@@ -177,6 +183,23 @@ def _new_contact(run: Exploration, area, point) -> bool:
     return True
 
 
+def on_recorded(run: Exploration, area) -> bool:
+    """With a noisy sensor: does the whole lid lie within
+    :attr:`~core2d.resolution.Resolution.near` (2 tol + the jitter) of
+    recorded contour? Its ends are readings that scatter by the jitter, so
+    two readings of one wall can make a lid along that wall (or a hair
+    inside it) whose C_A^B the robot has recorded but whose pieces do not
+    chain (:meth:`~core2d.planner.known.KnownContour.covers`): nothing
+    hides behind it, and the W3 proof (no free line crosses it past the
+    noisy record) would make W3 of a traced wall. Perfect sensing
+    (jitter 0) leaves the paper's flow as it is."""
+    if run.res.jitter == 0:
+        return False
+    k = int(np.ceil(area.dist / run.res.fan_spacing)) + 1
+    pts = area.a + np.linspace(0.0, 1.0, k)[:, None] * (area.b - area.a)
+    return all(run.known.distance(p) <= run.res.near for p in pts)
+
+
 def revisit_one(run: Exploration, area):
     """Look at one deferred area again (steps 1-3, 5 of the module doc).
 
@@ -185,6 +208,8 @@ def revisit_one(run: Exploration, area):
     probe, known = run.probe, run.known
     if known.covers(area.a, area.b, run.res.tip_zone):
         return run.close(area, "traced", "C_A^B traced through other areas")
+    if on_recorded(run, area):
+        return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
     if not lines and candidate:
@@ -214,7 +239,7 @@ def revisit_one(run: Exploration, area):
             return run.children(area, kids)
         area.tries += 1
         escaped |= c is None
-        ends_only &= c is not None and _near_end(run, area, c.point)
+        ends_only &= c is not None and _near_end(run, area, c.point, run.res.sensor_tol)
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "

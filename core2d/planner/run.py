@@ -37,6 +37,7 @@ from collections import deque
 
 import numpy as np
 
+from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit
 from core2d.planner.bootstrap import bootstrap
@@ -145,8 +146,8 @@ class Exploration:
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
-        # the robot's map; gaps shorter than eps are W2 (§3.1)
-        self.known = KnownContour(join=eps) if flow.map else None
+        # the robot's map; gaps narrower than eps (+ the sensor's jitter) are W2 (§3.1)
+        self.known = KnownContour(join=self.res.w2_dist) if flow.map else None
 
     def add(self, area):
         area.index = len(self.result.areas)
@@ -177,7 +178,9 @@ class Exploration:
 
     def traced(self, polylines, ends) -> float:
         """Record W1 polylines (material on the right) and the postures that
-        touched their ends; their total length."""
+        touched their ends; their total length. Noisy readings are smoothed
+        over the sensor's jitter first (:func:`core2d.planner.denoise.smooth`)."""
+        polylines = [smooth(pl, self.res) for pl in polylines]
         self.result.w1.extend(polylines)
         self.result.known_at["w1"].extend([self.probe.motions - 1] * len(polylines))
         for pl, (pose_first, pose_last) in zip(polylines, ends):
@@ -202,7 +205,7 @@ class Exploration:
 
     def process(self, area):
         probe, eps = self.probe, self.eps
-        if area.dist < eps:
+        if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
             return self.close(area, "W2", "Dist(A,B) < eps")
         same = self.res.tip_zone
         if self.flow.map and self.known.covers(area.a, area.b, same):

@@ -95,7 +95,7 @@ class CompiledEngine(PythonEngine):
         the same steps and rays as :func:`core2d.sim.compliance.python_steps`."""
         stats = self.stats
         pose = np.array((probe.joint[0], probe.joint[1], probe.theta, stats.joint_path))
-        res = probe.resolution
+        res = probe.exact
         motion = (float(v[0]), float(v[1]), float(rot_dir), float(delta0), res.stop_short,
                   res.tip_zone, res.near, float(max_dist), float(max_steps),
                   1.0 if guard_push else 0.0)

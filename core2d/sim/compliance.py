@@ -101,13 +101,13 @@ def compliant_trace(probe, v, tau, max_dist, delta=None, stop_at=None,
     Reading with ``event`` and the recorded tip ``trace``.
     """
     probe._motion()
-    res = probe.resolution
+    res = probe.exact
     v = np.asarray(v, float) / np.linalg.norm(v)
     rot_dir = -int(np.sign(tau))  # clockwise torque = negative math rotation
     delta0 = res.fan_spacing if delta is None else float(delta)
     stop = None if stop_at is None else np.asarray(stop_at, float)
     leave = None if leave_at is None else np.asarray(leave_at, float)
-    first = probe.sense()
+    first = probe.sense(exact=True)  # the simulator's true start contact
     last = first.tip_contact
     leave_far = leave is not None and last is not None and float(
         np.linalg.norm(last.point - leave)) > res.tip_zone
@@ -129,7 +129,7 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
     step, primary contact or None)``, event a :class:`TraceEvent`. ``leave``
     is given only when the trace starts farther than the tip zone from it.
     """
-    engine, stats, res = probe.engine, probe.stats, probe.resolution
+    engine, stats, res = probe.engine, probe.stats, probe.exact
     vx, vy = float(v[0]), float(v[1])
     dmin = res.stop_short
     jump = res.tip_zone

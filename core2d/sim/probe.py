@@ -27,6 +27,7 @@ from core2d.result import SenseStats
 from core2d.sim.compliance import compliant_trace
 from core2d.sim.contact import ContactModel
 from core2d.sim.engine import make_engine
+from core2d.sim.sensor import Sensor, SensorModel
 
 __all__ = ["Probe"]
 
@@ -53,16 +54,27 @@ class Probe:
         always stays in the free area F.
     tol : float, optional
         Contact resolution, default eps / 20 (:meth:`Resolution.of`).
+    sensor : SensorModel, optional
+        How the readings depart from the truth (:mod:`core2d.sim.sensor`;
+        default exact). Its stated noise and taxel spacing are part of the
+        robot's ``resolution``.
     """
 
     def __init__(self, contact: ContactModel, workspace, eps: float,
-                 length: float | None = None, tol: float | None = None):
+                 length: float | None = None, tol: float | None = None,
+                 sensor: SensorModel | None = None):
         self.contact = contact
         self.center = np.asarray(workspace[0], dtype=np.float64)
         self.radius = float(workspace[1])
-        self.resolution = res = Resolution.of(eps, tol)
+        model = sensor if sensor is not None else SensorModel()
+        # the robot's stated resolution (the planner's: the sensor's data
+        # sheet included) and the simulator's own, exact one (its searches,
+        # settles and jump tests resolve the true geometry)
+        self.resolution = Resolution.of(eps, tol, model.noise, model.taxel)
+        self.exact = res = Resolution.of(eps, tol)
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
+        self.sensor = Sensor(model, self.length)
         self.stats = SenseStats()
         self.engine = make_engine(contact, self.stats, self.length, res)
         # the angular fan spacing and resolution of the searches, and the tip
@@ -101,8 +113,10 @@ class Probe:
         return np.array((self.joint[0] + L * math.cos(th), self.joint[1] + L * math.sin(th)))
 
     # --------------------------------------------------------------- sensing
-    def sense(self, event="done", **extra) -> Reading:
-        """Read the tactile skin and the torque sensor at the current pose.
+    def sense(self, event="done", exact=False, **extra) -> Reading:
+        """Read the tactile skin and the torque sensor at the current pose,
+        as the sensors report it (:mod:`core2d.sim.sensor`; ``exact``: the
+        simulator's own, true reading).
 
         Tactile skin: a ray from the tip along t (reach ``tol``) and the two
         rays of the torque check below; contacts on the probe (distance from
@@ -142,7 +156,7 @@ class Probe:
             contacts = [primary] + [
                 c for c in contacts if np.linalg.norm(c.point - primary.point) > self.tip_zone
             ]
-        return Reading(
+        reading = Reading(
             joint=self.joint.copy(),
             direction=t,
             contacts=tuple(contacts),
@@ -151,6 +165,7 @@ class Probe:
             event=event,
             **extra,
         )
+        return reading if exact else self.sensor.reading(reading)
 
     # --------------------------------------------------------------- motions
     def _motion(self):

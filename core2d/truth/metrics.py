@@ -44,11 +44,16 @@ from core2d.result import SliceResult
 
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
 
-__all__ = ["slice_metrics", "total_metrics", "lid_arcs"]
+__all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs"]
 
 _RATIOS = {"coverage": ("covered_length", "reachable_length"),
-           "precision": ("precise_length", "detected_length")}
-_MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol", "spacing")
+           "precision": ("precise_length", "detected_length"),
+           "coverage_sensor": ("covered_length_sensor", "reachable_length"),
+           "precision_sensor": ("precise_length_sensor", "detected_length")}
+_MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol",
+             "spacing", "sensor_tol")
+#: the keys of :func:`slice_metrics` that :func:`sensor_metrics` reports at the sensor's tolerance
+_SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision", "w3_unsound_count")
 
 
 def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
@@ -138,7 +143,7 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
 
 
 def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = None,
-                  spacing: float | None = None, samples=None) -> dict:
+                  spacing: float | None = None, samples=None, lid_tol: float = 0.0) -> dict:
     """Metrics of one :class:`core2d.result.SliceResult` against the true contour.
 
     Parameters
@@ -151,6 +156,9 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     spacing : float, optional -- sampling step, default ``tol / 2``.
     samples : (ContourSamples, (m,) bool), optional -- a cached
         :func:`core2d.truth.reachability.reachable_samples` of ``loops`` at ``spacing``.
+    lid_tol : float -- reachable contour behind a W3 lid within this of the
+        lid itself is not hidden (0: any; :func:`sensor_metrics` passes the
+        sensor's tolerance).
 
     Returns
     -------
@@ -194,6 +202,9 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     for k in range(2):  # farther than eps from both ends of each lid
         far &= np.hypot(*(samp.points[None] - ends[:, k, None]).transpose(2, 0, 1)) > eps
     hidden = lids["member"] & far & reach  # (n, m): reachable, behind a lid, not at its ends
+    if lid_tol > 0 and len(ends):
+        for k, (p, q) in enumerate(ends):  # farther than lid_tol from the lid's chord
+            hidden[k] &= _point_chord(samp.points, p, q) > lid_tol
     hidden_length = hidden.astype(float) @ w
     unsound = lids["cross_loop"] | (hidden_length > 0)
     chords = np.hypot(*(ends[:, 1] - ends[:, 0]).T)
@@ -238,6 +249,38 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     return out
 
 
+def _point_chord(points, p, q) -> np.ndarray:
+    """(m,) distances of (m, 2) ``points`` from the segment p -> q."""
+    d = q - p
+    t = np.clip(((points - p) @ d) / max(float(d @ d), 1e-300), 0.0, 1.0)
+    return np.hypot(*(points - p - t[:, None] * d).T)
+
+
+def sensor_metrics(loops, result: SliceResult, eps: float, noise: float,
+                   spacing: float | None = None, samples=None) -> dict:
+    """Coverage and precision at the tolerance a noisy sensor allows.
+
+    A reading is off by the sensor's noise (standard deviation ``noise``),
+    so a point within eps / 2 + 2 noise of the contour
+    (:attr:`Resolution.sensor_tol <core2d.resolution.Resolution.sensor_tol>`)
+    is as good as the sensor can tell. Returns ``sensor_tol`` and the keys
+    ``covered_length``, ``coverage``, ``precise_length``, ``precision``,
+    ``w3_unsound_count`` of :func:`slice_metrics` at that tolerance (a lid is
+    unsound when it hides reachable contour farther than eps from its ends
+    and farther than the tolerance from the lid), each with the suffix
+    ``_sensor`` (reported beside the noiseless ones), and ``w3_soundness_sensor``. ``spacing`` and
+    ``samples`` as in :func:`slice_metrics` (default spacing eps / 4, the
+    noiseless metrics' sampling).
+    """
+    tol = Resolution.of(eps, noise=noise).sensor_tol
+    spacing = 0.25 * eps if spacing is None else spacing
+    m = slice_metrics(loops, result, eps, tol=tol, spacing=spacing, samples=samples, lid_tol=tol)
+    out = {"sensor_tol": tol, **{f"{k}_sensor": m[k] for k in _SENSOR_KEYS}}
+    n = m["w3_count"]
+    out["w3_soundness_sensor"] = 1.0 - m["w3_unsound_count"] / n if n else 1.0
+    return out
+
+
 def total_metrics(metrics: list[dict]) -> dict:
     """Aggregate :func:`slice_metrics` dicts over slices.
 
@@ -263,17 +306,19 @@ def total_metrics(metrics: list[dict]) -> dict:
         elif k == "budget_hit":
             out["budget_hit"] = bool(any(vals))
             out["budget_hits"] = int(sum(bool(v) for v in vals))
-        elif k in _RATIOS or k == "w3_soundness":
+        elif k in _RATIOS or k in ("w3_soundness", "w3_soundness_sensor"):
             continue
         elif all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in vals):
             out[k] = int(sum(vals))
         elif all(isinstance(v, (int, float, np.number)) and not isinstance(v, bool) for v in vals):
             out[k] = float(sum(vals))
     for k, (num, den) in _RATIOS.items():
-        if num in out or den in out:
+        if num in out or (den in out and not k.endswith("_sensor")):  # _sensor: noisy runs only
             n, d = out.get(num, 0.0), out.get(den, 0.0)
             out[k] = float(n / d) if d > 0 else 1.0
     if "w3_count" in out:
         n = out["w3_count"]
         out["w3_soundness"] = float(1.0 - out.get("w3_unsound_count", 0) / n) if n else 1.0
+        if "w3_unsound_count_sensor" in out:
+            out["w3_soundness_sensor"] = float(1.0 - out["w3_unsound_count_sensor"] / n) if n else 1.0
     return out

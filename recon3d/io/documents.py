@@ -117,7 +117,8 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
     ``robot.probe_speed`` is in mesh units per second (``robot.units``; the
     ``probe_speed`` parameter is in mm/s). With ``--slices auto`` each slice's
     ``index`` is its position in its family and ``candidate`` its candidate
-    plane, and the document ends with ``adaptive`` (``run.adaptive``).
+    plane, and the document ends with ``adaptive`` (``run.adaptive``). A run with a
+    sensor model (``noise`` or ``taxel``) records it under ``sensor``.
     """
     cfg = run.config
     total = dict(run.totals)
@@ -140,6 +141,10 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
         "slices": [_slice_metrics(s, run, k) for fam in run.families
                    for k, s in enumerate(fam.slices)],
     }
+    if cfg.noise or cfg.taxel:  # absent: the paper's perfect sensing
+        doc["sensor"] = {"noise": float(cfg.noise), "taxel": float(cfg.taxel),
+                         "seed": int(cfg.seed), "unit": "eps",
+                         "metric_tol": "eps / 2 + 2 noise (the *_sensor metrics)"}
     if run.adaptive is not None:
         doc["adaptive"] = run.adaptive
     return doc

@@ -23,7 +23,8 @@ import trimesh
 
 import core2d
 import slicer
-from core2d.truth.metrics import slice_metrics
+from core2d.sim.sensor import SensorModel
+from core2d.truth.metrics import sensor_metrics, slice_metrics
 from core2d.truth.reachability import reachable_samples
 from recon3d.records import ContourTruth, SliceRun
 
@@ -40,6 +41,9 @@ class SenseSettings:
     backend : str -- one of ``slicer.BACKENDS`` ('embree', 'exact', 'trimesh').
     max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
     method : str -- the planner's flow, ``'pulling'`` or ``'paper'``.
+    noise, taxel : float -- the sensor's noise and taxel spacing, in eps
+        (:mod:`core2d.sim.sensor`; 0: perfect sensing).
+    seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
     """
 
     axes: tuple
@@ -50,6 +54,16 @@ class SenseSettings:
     max_motions: int
     bootstrap: int
     method: str = "pulling"
+    noise: float = 0.0
+    taxel: float = 0.0
+    seed: int = 0
+
+    def sensor(self, family: int, index: int) -> SensorModel | None:
+        """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
+        if not (self.noise or self.taxel):
+            return None
+        return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed).reseeded(
+            family, index)
 
     @property
     def metric_tol(self) -> float:
@@ -78,6 +92,8 @@ def no_reference_metrics(result, settings: SenseSettings) -> dict:
     every value None except the cost counters of ``result.stats``."""
     st = settings
     keys = slice_metrics([], core2d.SliceResult(), st.eps, tol=st.metric_tol, spacing=st.spacing)
+    if st.sensor(0, 0) is not None:
+        keys = {**keys, **sensor_metrics([], core2d.SliceResult(), st.eps, 0.0, spacing=st.spacing)}
     out = {k: None for k in keys}
     out.update(result.stats.as_dict())
     return out
@@ -133,9 +149,10 @@ class WorkerState:
                             (np.zeros(2), 0.0), ContourTruth.empty())
         center, radius = cut.bounding_circle()
         workspace = (np.asarray(center, float), float(radius) + st.eps)
+        sensor = st.sensor(family, index)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
                                     max_motions=st.max_motions, bootstrap_count=st.bootstrap,
-                                    method=st.method)
+                                    method=st.method, sensor=sensor)
         if not cut.loops or cut.open_chains:
             return SliceRun(None, family, index, result, no_reference_metrics(result, st),
                             workspace, ContourTruth.empty())
@@ -143,6 +160,9 @@ class WorkerState:
         samples = reachable_samples(loops, st.spacing)
         metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
                                 samples=samples)
+        if sensor is not None:  # beside the noiseless ones: within eps/2 + 2 sigma
+            metrics.update(sensor_metrics(loops, result, st.eps, sensor.noise,
+                                          spacing=st.spacing, samples=samples))
         samp, reach = samples
         covered = reach & _covered(samp.points, result, st.metric_tol)
         truth = ContourTruth(samp.points, samp.lengths, reach, covered)

@@ -1,0 +1,216 @@
+"""The planner with real sensors: noise and taxels, per scene group and level.
+
+Every case is sensed once with the paper's perfect sensing and once per
+sensor level (:class:`core2d.SensorModel`: contact and joint-reading noise
+S x eps, taxels T x eps, seeded per case), and scored against the true
+contour with :func:`core2d.truth.metrics.slice_metrics` (tolerance eps / 2)
+and :func:`core2d.truth.metrics.sensor_metrics` (eps / 2 + 2 S x eps). One
+row per group and level: slices, reachable coverage and precision at both
+tolerances (length weighted, and the worst slice at the sensor's), W3 lids
+and unsound ones at both tolerances, motions and their ratio to the noiseless run (total, and
+the worst slice), budget hits.
+
+    python -m bench.sensor_study                       # every group, every level
+    python -m bench.sensor_study --groups scenes --levels 0.3:0.25 --jobs 2
+
+Groups: ``outlines`` (``--per-kind`` seeded outlines of each kind of
+``tests/outlines.py``, exact backend, eps 1), ``scenes`` (the middle z-slice
+of every built-in scene, Embree, eps = diagonal / 200; ``--slices N``: N
+z-slices each), ``meshes`` (``../shared/meshes`` alike, skipped when
+absent). Nothing is asserted: it measures.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+SHARED = ROOT.parent / "shared"
+sys.path.insert(0, str(ROOT / "tests"))
+
+LEVELS = ((0.03, 0.0), (0.1, 0.0), (0.3, 0.0), (1.0, 0.0), (0.0, 0.25), (0.3, 0.25))
+"""(noise, taxel) in eps, besides the noiseless run every level is compared with."""
+GROUPS = ("outlines", "scenes", "meshes")
+
+
+def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
+    from core2d import SensorModel, sense_slice
+    from core2d.truth.metrics import sensor_metrics, slice_metrics
+    from core2d.truth.reachability import reachable_samples
+
+    samples = reachable_samples(loops, eps / 4)
+    rows = []
+    for noise, taxel in ((0.0, 0.0),) + tuple(levels):
+        sensor = SensorModel.of_eps(eps, noise, taxel, seed)
+        res = sense_slice(contact, ws, eps, max_motions=budget, sensor=sensor)
+        m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples)
+        m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples))
+        rows.append({"noise": noise, "taxel": taxel, **{k: m[k] for k in (
+            "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
+            "reachable_length", "precision", "precise_length", "precision_sensor",
+            "precise_length_sensor", "detected_length", "w3_count", "w3_unsound_count",
+            "w3_unsound_count_sensor", "motions", "budget_hit")}})
+    base = rows[0]["motions"]
+    for r in rows:
+        r["ratio"] = r["motions"] / max(base, 1)
+    return rows
+
+
+def _outline_case(kind, seed, levels, budget):
+    from outlines import outline
+
+    from slicer import ExactContact
+
+    loops = outline(kind, np.random.default_rng(seed), 1.0)
+    pts = np.concatenate(loops)
+    lo, hi = pts.min(0), pts.max(0)
+    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
+    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget)
+
+
+def _mesh_case(source, count, index, levels, budget):
+    import meshes
+    import slicer
+
+    mesh = meshes.load(source)
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=count)[index]
+    if not cut.loops or cut.open_chains:
+        return []
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+    return _score(loops, cut.contact("embree"), (center, radius + eps), eps, levels, index,
+                  budget)
+
+
+def cases(args):
+    """(group, name, function, arguments) of every case."""
+    import meshes
+    from outlines import KINDS
+
+    if "outlines" in args.groups:
+        for kind in KINDS:
+            for seed in range(args.per_kind):
+                yield "outlines", f"{kind}-{seed}", _outline_case, (kind, seed)
+    picks = [args.slices // 2] if args.slices == 1 else range(args.slices)
+    count = 8 if args.slices == 1 else args.slices  # the middle of 8 (the issue's slice)
+    if "scenes" in args.groups:
+        for name in meshes.names():
+            for i in ([count // 2] if args.slices == 1 else picks):
+                yield "scenes", f"{name}:z{i}", _mesh_case, (name, count, i)
+    if "meshes" in args.groups and (SHARED / "meshes").is_dir():
+        for path in sorted((SHARED / "meshes").glob("*.*")):
+            if path.suffix.lower() in (".stl", ".obj", ".ply", ".off", ".glb"):
+                for i in ([count // 2] if args.slices == 1 else picks):
+                    yield "meshes", f"{path.stem}:z{i}", _mesh_case, (str(path), count, i)
+
+
+def _run(job):
+    group, name, fn, a, levels, budget = job
+    t0 = time.perf_counter()
+    try:
+        rows = fn(*a, levels, budget)
+    except Exception as exc:  # a crash is a finding, reported, not fatal
+        return [{"group": group, "name": name, "error": f"{type(exc).__name__}: {exc}"[:200]}]
+    for r in rows:
+        r.update(group=group, name=name, wall=time.perf_counter() - t0)
+    return rows
+
+
+def summarise(rows) -> list[dict]:
+    """One summary per (group, noise, taxel)."""
+    keyed = {}
+    for r in rows:
+        if "error" not in r:
+            keyed.setdefault((r["group"], r["noise"], r["taxel"]), []).append(r)
+    out = []
+    for (g, noise, taxel), rs in sorted(keyed.items()):
+        def total(num, den):
+            d = sum(r[den] for r in rs)
+            return sum(r[num] for r in rs) / d if d > 0 else 1.0
+        base = sum(r["motions"] / r["ratio"] for r in rs)
+        out.append({
+            "group": g, "noise": noise, "taxel": taxel, "slices": len(rs),
+            "coverage": total("covered_length", "reachable_length"),
+            "coverage_sensor": total("covered_length_sensor", "reachable_length"),
+            "cov_sensor_min": min(r["coverage_sensor"] for r in rs),
+            "precision": total("precise_length", "detected_length"),
+            "precision_sensor": total("precise_length_sensor", "detected_length"),
+            "prec_sensor_min": min(r["precision_sensor"] for r in rs),
+            "lids": sum(r["w3_count"] for r in rs),
+            "unsound": sum(r["w3_unsound_count"] for r in rs),
+            "unsound_sensor": sum(r["w3_unsound_count_sensor"] for r in rs),
+            "motions": sum(r["motions"] for r in rs),
+            "ratio": sum(r["motions"] for r in rs) / max(base, 1),
+            "ratio_max": max(r["ratio"] for r in rs),
+            "budget": sum(bool(r["budget_hit"]) for r in rs),
+        })
+    return out
+
+
+def markdown(summary) -> str:
+    """The summary as a markdown table."""
+    rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
+            "(min) | precision eps/2 | precision eps/2+2σ (min) | W3 lids | unsound eps/2 | "
+            "unsound eps/2+2σ | motions "
+            "| × noiseless (max) | budget hits |", "|" + "---|" * 14]
+    for s in summary:
+        rows.append(
+            f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
+            f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
+            f"{s['precision']:.4f} | {s['precision_sensor']:.4f} ({s['prec_sensor_min']:.4f}) | "
+            f"{s['lids']} | {s['unsound']} | {s['unsound_sensor']} | {s['motions']} | {s['ratio']:.2f} "
+            f"({s['ratio_max']:.2f}) | {s['budget']} |")
+    return "\n".join(rows)
+
+
+def _levels(text):
+    try:
+        return tuple(tuple(float(x) for x in item.split(":")) for item in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"levels are NOISE:TAXEL,... in eps (got {text!r})")
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m bench.sensor_study",
+                                description=__doc__.splitlines()[0])
+    p.add_argument("--groups", default=",".join(GROUPS),
+                   help=f"comma-separated subset of {', '.join(GROUPS)} (default all)")
+    p.add_argument("--levels", type=_levels, default=LEVELS, metavar="S:T,...",
+                   help="sensor levels NOISE:TAXEL in eps (default "
+                   + ",".join(f"{a:g}:{b:g}" for a, b in LEVELS) + "); 0:0 always runs")
+    p.add_argument("--per-kind", type=int, default=2, help="outlines per kind (default 2)")
+    p.add_argument("--slices", type=int, default=1,
+                   help="z-slices per mesh (default 1: the middle of 8)")
+    p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
+    p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
+    args = p.parse_args(argv)
+    args.groups = [g.strip() for g in args.groups.split(",") if g.strip()]
+    unknown = [g for g in args.groups if g not in GROUPS]
+    if unknown or any(len(lv) != 2 or min(lv) < 0 for lv in args.levels):
+        p.error(f"unknown groups {unknown}" if unknown else "levels are NOISE:TAXEL >= 0")
+    levels = tuple(lv for lv in args.levels if lv != (0.0, 0.0))
+    jobs = [(g, n, fn, a, levels, args.budget) for g, n, fn, a in cases(args)]
+    print(f"sensor study: {len(jobs)} cases x {len(levels) + 1} runs, {args.jobs} jobs",
+          file=sys.stderr)
+    t0 = time.perf_counter()
+    rows = []
+    with ProcessPoolExecutor(args.jobs) as ex:
+        for k, got in enumerate(ex.map(_run, jobs, chunksize=1)):
+            rows += got
+            print(f"  [{k + 1}/{len(jobs)}] {jobs[k][1]}", file=sys.stderr, flush=True)
+    for r in rows:
+        if "error" in r:
+            print("CRASH", r["group"], r["name"], r["error"])
+    print(markdown(summarise(rows)))
+    print(f"\n{len(jobs)} cases in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,135 @@
+"""The sensors a robot really has: noisy contacts, taxels, noisy joint readings.
+
+The paper assumes perfect sensing (§3.2): the distributed sensing elements
+report the exact contact point, the joint position sensors the exact
+posture (P, t). :class:`SensorModel` states how a real robot departs from
+that, and :class:`Sensor` applies it to every :class:`~core2d.readings.Reading`
+the simulator returns -- the planner sees only the degraded readings:
+
+* **taxels** -- the skin is a row of sensing elements ``taxel`` apart along
+  the probe; a contact is reported at the centre of the taxel that holds it.
+  The tip is a taxel of its own, centred on the tip (a contact within
+  ``taxel / 2`` of the tip along the probe is the tip's). The point is
+  placed from the reported posture: ``P' + a t'`` with ``a`` the taxel's
+  distance from the joint, plus the contact's offset across the probe.
+* **contact noise** -- Gaussian, standard deviation ``noise`` per axis, on
+  every reported contact point (the tip contacts of a compliant trace too).
+* **joint readings** -- Gaussian noise on the joint position P (standard
+  deviation ``noise``) and on the direction t (``noise / L`` radians, the
+  same displacement at the tip): the joint position sensors' error.
+
+The simulator's own state (the true posture the rays are cast from) is
+never perturbed: noise is a property of the readings, not of the world.
+Every draw comes from one seeded generator, so a run is reproducible.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from core2d.readings import TIP, Contact, Reading
+
+__all__ = ["SensorModel", "Sensor"]
+
+
+@dataclass(frozen=True)
+class SensorModel:
+    """A robot's sensor data sheet (lengths in the slice's units).
+
+    noise : float -- standard deviation of contact positions and of the
+        joint position reading (0: exact).
+    taxel : float -- spacing of the tactile elements along the probe
+        (0: a continuous skin).
+    seed : int -- seed of the noise.
+
+    >>> SensorModel.of_eps(2.0, noise=0.1, taxel=0.25).taxel
+    0.5
+    """
+
+    noise: float = 0.0
+    taxel: float = 0.0
+    seed: int = 0
+
+    @classmethod
+    def of_eps(cls, eps: float, noise: float = 0.0, taxel: float = 0.0,
+               seed: int = 0) -> SensorModel:
+        """The model with ``noise`` and ``taxel`` given as multiples of eps."""
+        return cls(float(noise) * eps, float(taxel) * eps, int(seed))
+
+    @property
+    def ideal(self) -> bool:
+        """The paper's perfect sensing (§3.2): nothing to apply."""
+        return self.noise == 0 and self.taxel == 0
+
+    def reseeded(self, *keys: int) -> SensorModel:
+        """The same model with a seed derived from ``seed`` and ``keys`` (one
+        stream per slice: results do not depend on the order slices run in)."""
+        seq = np.random.SeedSequence([self.seed, *[int(k) for k in keys]])
+        return replace(self, seed=int(seq.generate_state(1)[0]))
+
+    def as_dict(self) -> dict:
+        return {"noise": float(self.noise), "taxel": float(self.taxel), "seed": int(self.seed)}
+
+
+class Sensor:
+    """Applies a :class:`SensorModel` to readings (one seeded generator).
+
+    Parameters
+    ----------
+    model : SensorModel
+    length : float -- probe length L (direction noise is ``noise / L``).
+    """
+
+    def __init__(self, model: SensorModel, length: float):
+        self.model = model
+        self.length = float(length)
+        self.rng = np.random.default_rng(model.seed)
+
+    def _jitter(self, shape) -> np.ndarray:
+        return self.rng.normal(0.0, self.model.noise, shape) if self.model.noise else np.zeros(shape)
+
+    def pose(self, joint, direction) -> tuple[np.ndarray, np.ndarray]:
+        """Reported (P, t): (2,) joint and (2,) unit direction."""
+        if not self.model.noise:
+            return np.array(joint, float), np.array(direction, float)
+        ang = math.atan2(direction[1], direction[0]) + self.rng.normal(
+            0.0, self.model.noise / self.length)
+        return np.asarray(joint, float) + self._jitter(2), np.array((math.cos(ang),
+                                                                     math.sin(ang)))
+
+    def along(self, along: float) -> float:
+        """Distance from the joint of the taxel centre holding a contact at ``along``."""
+        T = self.model.taxel
+        if not T:
+            return float(along)
+        return self.length - round((self.length - along) / T) * T
+
+    def contact(self, c: Contact, joint, direction, seen) -> Contact:
+        """The reported contact ``c`` of the true posture (``joint``,
+        ``direction``), placed from the reported posture ``seen``."""
+        t = np.asarray(direction, float)
+        n = np.array((-t[1], t[0]))
+        rel = np.asarray(c.point, float) - joint
+        a, b = float(rel @ t), float(rel @ n)
+        if self.model.taxel:
+            a = self.along(min(a, self.length))
+        P, u = seen
+        point = P + a * u + b * np.array((-u[1], u[0])) + self._jitter(2)
+        face = TIP if self.model.taxel and a >= self.length else c.face
+        return Contact(point, face, float(min(a, self.length)))
+
+    def reading(self, r: Reading) -> Reading:
+        """``r`` as the sensors report it."""
+        if self.model.ideal:
+            return r
+        seen = self.pose(r.joint, r.direction)
+        contacts = tuple(self.contact(c, r.joint, r.direction, seen) for c in r.contacts)
+        kw = {}
+        if len(r.trace):  # tip contacts of a compliant trace: the tip taxel, noisy
+            kw["trace"] = np.asarray(r.trace, float) + self._jitter(np.shape(r.trace))
+        if r.before_joint is not None:
+            kw["before_joint"], kw["before_direction"] = self.pose(r.before_joint,
+                                                                   r.before_direction)
+        return replace(r, joint=seen[0], direction=seen[1], contacts=contacts, **kw)

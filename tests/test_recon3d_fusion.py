@@ -95,6 +95,22 @@ def test_fusion_gains_the_through_hole_only_the_other_axis_sees():
     assert _topology(fuse([zb, xb], mesh.bounds)) == (1, 0)
 
 
+def test_fused_faces_on_slice_planes_keep_their_sensed_label():
+    """A fused face with a vertex on a slice plane takes the kind of the nearest sensed
+    piece (W1 here), as one family's faces do: the fused surface labels W1 at least the
+    share of the surface one family alone labels (the rule of ``fusion._labels``)."""
+    mesh = _block_with_bore()
+    z, x = _solid(mesh, "z", 8, 0.3), _solid(mesh, "x", 12, 0.3)
+
+    def w1_share(surface):
+        lab = np.asarray(surface.face_attributes["label"])
+        return surface.area_faces[lab == 1].sum() / surface.area_faces[lab != 5].sum()
+
+    alone = max(w1_share(fuse([z], mesh.bounds)), w1_share(fuse([x], mesh.bounds)))
+    assert alone > 0.05
+    assert w1_share(fuse([z, x], mesh.bounds)) >= 0.9 * alone
+
+
 def _ridge():
     """A 40 x 10 block (x, y) with a narrow raised-cosine ridge on top, extruded 20 along z.
 

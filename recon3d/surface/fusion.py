@@ -170,15 +170,16 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
 
 
 def _labels(points, faces, fields, step: float) -> np.ndarray:
-    """(f,) int: W-kind of the nearest piece for faces on a slice plane (within step / 4),
-    else 4 (between slices)."""
+    """(f,) int: W-kind of the nearest piece for faces touching a slice plane (a vertex
+    within step / 4 of it), else 4 (between slices) -- the rule of one family's level set
+    (:func:`recon3d.surface.solid._face_labels`: a face with a vertex on a slice plane)."""
     cen = points[faces].mean(axis=1)
     lab = np.full(len(faces), 4, dtype=np.int32)
     best = np.full(len(faces), np.inf)
     for ff in fields:
-        h = cen @ np.asarray(ff.planes[0].normal, dtype=np.float64)
+        h = points[faces] @ np.asarray(ff.planes[0].normal, dtype=np.float64)  # (f, 3)
         for plane, reg in zip(ff.planes, ff.regions):
-            on = np.flatnonzero(np.abs(h - plane.offset) < step / 4)
+            on = np.flatnonzero(np.abs(h - plane.offset).min(axis=1) < step / 4)
             if len(on) == 0 or not reg.pieces:
                 continue
             p2, owner = sample_pieces(reg.pieces, step / 4)

@@ -20,9 +20,8 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any, Literal
+from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 import trimesh
@@ -32,6 +31,7 @@ from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, I
                             at_least, check_axes, check_backend, check_choice, check_eps,
                             check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
                             check_slices, check_tol, parse_slices, positive, units_note)
+from recon3d.param import Param, param
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
            "default_jobs", "COARSE", "METHODS"]
@@ -55,52 +55,6 @@ def _auto(config) -> bool:
     return config.slices == "auto"
 
 
-@dataclass(frozen=True)
-class Param:
-    """How one run parameter is spelled, parsed, checked and documented.
-
-    key : str -- keyword of :func:`recon3d.run` and manifest key (default: the field name).
-    flag : str -- CLI flag (default ``--key`` with dashes).
-    parse : callable or None -- argparse ``type`` (None: str).
-    repeat : bool -- the flag may be repeated (``action='append'``: axis).
-    help : str -- argparse help (and the docstring of :func:`recon3d.run`).
-    convert : callable(value) -- keyword value -> field value (may raise InputError).
-    check : callable(value, name) -- bounds, told the caller's spelling of the name.
-    when : callable(RunConfig) -> bool -- whether ``check`` applies (default always).
-    choices : tuple, optional -- allowed values (CLI ``choices``).
-    metavar : str -- metavar of the README table (``--axis A``).
-    shown_default : str -- the README default column.
-    doc : tuple -- README rows: a meaning (of ``flag metavar``), or (value, meaning) for
-        a value spelled out (``--slices auto``).
-    batch : bool -- a ``[params]`` key of batch manifests.
-    keyword_default, keyword_type : str, optional -- the default and type as
-        :func:`recon3d.run` takes them, where they differ from the field's (axis).
-    switch : bool -- an on/off flag (``--force``): no value on the command line.
-    """
-
-    help: str
-    doc: tuple
-    shown_default: str
-    parse: Callable | None = None
-    key: str = ""
-    flag: str = ""
-    convert: Callable | None = None
-    check: Callable | None = None
-    when: Callable | None = None
-    choices: tuple | None = None
-    repeat: bool = False
-    metavar: str = ""
-    batch: bool = True
-    keyword_default: str | None = None
-    keyword_type: str | None = None
-    switch: bool = False
-    name: str = ""  # the field name (filled in below)
-
-
-def _param(default, **kw) -> Any:
-    return field(default=default, metadata={"param": Param(**kw)})
-
-
 _LO, _HI = EPS_SHARE
 
 
@@ -113,7 +67,7 @@ class RunConfig:
     renders them. ``bootstrap`` is internal (initial insertions per slice).
     """
 
-    axes: tuple = _param(
+    axes: tuple = param(
         ("z",), key="axis", keyword_default="z",
         keyword_type="str | Sequence[float] | Sequence[str | Sequence[float]]",
         repeat=True, metavar="A", shown_default="`z`", convert=_axes, check=check_axes,
@@ -121,7 +75,7 @@ class RunConfig:
         "into one surface (default z)",
         doc=(("slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
               "-1,0,0` works). Repeat it for several slice families fused into one surface"),))
-    slices: int | Literal["auto"] = _param(
+    slices: int | Literal["auto"] = param(
         8, parse=parse_slices, metavar="N", shown_default="8", convert=check_slices,
         check=check_slice_count, when=lambda c: not _auto(c),
         help="slices per axis, at least 2 (default 8; more than extent / eps needs --force), "
@@ -135,18 +89,18 @@ class RunConfig:
               "neighbours whose sensed sections differ by more than `--slice-tol`, and sense "
               "each slice at 2 × eps, or at eps where it shows features (parts or pockets) "
               "narrower than 4 × eps")))
-    max_slices: int = _param(
+    max_slices: int = param(
         32, parse=int, metavar="N", shown_default="32", check=lambda v, n: at_least(v, n, low=3),
         when=_auto, help="--slices auto: candidate planes per axis (default 32)",
         doc=(("`--slices auto`: candidate planes per axis (the uniform run "
               "it replaces)"),))
-    slice_tol: float = _param(
+    slice_tol: float = param(
         0.005, parse=float, metavar="S", shown_default="0.005", check=check_slice_tol,
         when=_auto, help="--slices auto: refine between neighbours whose sensed sections differ "
         "by more than this share of the diagonal (default 0.005)",
         doc=(("`--slices auto`: refine between neighbours whose sensed "
               "sections differ (Hausdorff) by more than S × diagonal"),))
-    eps: float | None = _param(
+    eps: float | None = param(
         None, parse=float, metavar="E", shown_default="diagonal / 200",
         help=f"the paper's epsilon, in mesh units (default: bounding-box diagonal / 200; "
         f"allowed: {_LO:g} to {_HI:g} x diagonal)",
@@ -154,13 +108,13 @@ class RunConfig:
               f"the bounding-box diagonal** (outside: a unit mix-up or a meaningless run, "
               f"rejected); above {EPS_WARN_SHARE:g} × diagonal a warning says the numbers are "
               f"coarse"),))
-    tol: float | None = _param(
+    tol: float | None = param(
         None, parse=float, metavar="T", shown_default="eps / 20",
         help=f"contact resolution (default eps/20; allowed: eps*{TOL_SHARE:g} up to, not "
         f"including, eps)",
         doc=((f"contact resolution; must lie in **[eps / {1 / TOL_SHARE:g}, "
               f"eps)**"),))
-    noise: float = _param(
+    noise: float = param(
         0.0, parse=float, metavar="S", shown_default="0",
         check=lambda v, n: positive(v, n, allow_zero=True),
         help="sensor noise: Gaussian, standard deviation S x eps on every contact position and "
@@ -171,7 +125,7 @@ class RunConfig:
               "length (radians) on the probe direction; the planner is told S, and "
               "`metrics.json` adds coverage and precision within eps / 2 + 2 S × eps "
               "(`*_sensor`)"),))
-    taxel: float = _param(
+    taxel: float = param(
         0.0, parse=float, metavar="T", shown_default="0",
         check=lambda v, n: positive(v, n, allow_zero=True),
         help="taxel spacing T x eps: a contact is reported at the centre of the tactile element "
@@ -179,20 +133,20 @@ class RunConfig:
         doc=(("tactile elements T × eps apart along the probe: a contact is reported at the "
               "centre of its element, the tip being an element of its own; the planner is "
               "told T"),))
-    seed: int = _param(
+    seed: int = param(
         0, parse=int, metavar="N", shown_default="0",
         check=lambda v, n: at_least(v, n, low=0),
         help="seed of the sensor noise (default 0; each slice draws from its own stream, so "
         "results do not depend on --jobs)",
         doc=(("seed of the sensor noise; each slice has its own stream (seed, family, "
               "plane), so the results do not depend on `--jobs`"),))
-    backend: str = _param(
+    backend: str = param(
         "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=check_backend,
         help="contact backend (default embree; trimesh: its generic ray engine, slow)",
         doc=(("`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
               "reference) or `trimesh` (trimesh's generic ray engine; ≈ 20–35 × slower than "
               "Embree per motion, for comparison)"),))
-    method: Literal["pulling", "paper"] = _param(
+    method: Literal["pulling", "paper"] = param(
         "pulling", choices=METHODS, shown_default="`pulling`", metavar="M",
         check=lambda v, n: check_choice(v, n, METHODS),
         help="pulling (default: the paper's algorithm with the planner's map, deferral, "
@@ -203,40 +157,40 @@ class RunConfig:
               "audit of loose ends); `paper`: the paper's Fig. 16 flow alone (dead ends and "
               "Area(G_i) = 0 become W3 at once, §4.2.1). Both write the same outputs; "
               "`metrics.json` records it"),))
-    max_motions: int = _param(
+    max_motions: int = param(
         20000, parse=int, metavar="M", shown_default="20000", check=lambda v, n: at_least(v, n),
         help="motion budget per slice (default 20000)",
         doc=(("motion budget per slice (reported when hit)"),))
-    jobs: int | None = _param(
+    jobs: int | None = param(
         None, parse=int, metavar="N", shown_default="number of cores", batch=False,
         check=lambda v, n: at_least(v, n), when=lambda c: c.jobs is not None,
         help="parallel processes (default: number of cores; results do not depend on it)",
         doc=(("slices run in N processes; the results are identical for every N "
               "(tested)"),))
-    units: Literal["mm", "cm", "m", "in", "ft"] = _param(
+    units: Literal["mm", "cm", "m", "in", "ft"] = param(
         "mm", choices=tuple(MM_PER_UNIT), shown_default="`mm`", metavar="U",
         check=lambda v, n: check_choice(v, n, MM_PER_UNIT),
         help="length unit of the mesh: mm, cm, m, in or ft (default mm; the scenes are in mm)",
         doc=(("length unit of the mesh (`mm`, `cm`, `m`, `in`, `ft`): the probe speed (mm/s) "
               "is converted to mesh units for the robot time; a mesh under 1 mm or over 10 m "
               "across in these units gets a warning"),))
-    probe_speed: float = _param(
+    probe_speed: float = param(
         20.0, parse=float, metavar="V", shown_default="20", check=lambda v, n: positive(v, n),
         help="joint speed for the robot time, mm per second (default 20), converted to mesh "
         "units with --units",
         doc=(("joint speed for the robot time, mm / s (converted to mesh "
               "units with `--units`)"),))
-    motion_overhead: float = _param(
+    motion_overhead: float = param(
         0.2, parse=float, metavar="S", shown_default="0.2",
         check=lambda v, n: positive(v, n, allow_zero=True),
         help="seconds per motion for the robot time (default 0.2)",
         doc=(("seconds per motion (stop, read the sensors, plan) for "
               "the robot time"),))
-    force: bool = _param(
+    force: bool = param(
         False, switch=True, shown_default="off", check=check_flag,
         help="run even with slices closer than eps (more than extent / eps per axis)",
         doc=(("allow `--slices` (or `--max-slices`) above extent / eps"),))
-    drop_nonfinite: bool = _param(
+    drop_nonfinite: bool = param(
         False, switch=True, shown_default="off", batch=False, check=check_flag,
         help="drop NaN / inf vertices and their faces (with a warning) instead of refusing "
         "the mesh",

@@ -64,6 +64,8 @@ class SenseStats:
     ``push_attempts`` counts the steps where the planner's commanded v would
     have pushed and the guard stopped the trace (Case 3, §4.3.2): the honest
     measure of the pulling strategy, since the guard keeps ``pushes`` at 0.
+    ``jams`` counts the pushing steps that stuck under tip friction (the
+    rod inside the friction cone, :mod:`core2d.sim.friction`); 0 without it.
     """
 
     motions: int = 0
@@ -72,6 +74,7 @@ class SenseStats:
     joint_path: float = 0.0
     pushes: int = 0
     push_attempts: int = 0
+    jams: int = 0
     areas: int = 0
     escapes: int = 0
     budget_hit: bool = False
@@ -85,6 +88,7 @@ class SenseStats:
             "joint_path": float(self.joint_path),
             "pushes": int(self.pushes),
             "push_attempts": int(self.push_attempts),
+            "jams": int(self.jams),
             "areas": int(self.areas),
             "escapes": int(self.escapes),
             "budget_hit": bool(self.budget_hit),

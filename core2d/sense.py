@@ -5,13 +5,15 @@ simulated probe (:mod:`core2d.sim`, which owns the geometry) and hands it to
 the planner (:mod:`core2d.planner.run`, which sees sensor readings only) -- with the
 default flow or the paper's Fig. 16 alone (:mod:`core2d.planner.flow`) --
 or, with ``method="finger"``, to the dense finger-probing baseline
-(:mod:`core2d.planner.finger`). A :class:`~core2d.sim.recorder.Recorder`
+(:mod:`core2d.planner.finger`), or, with ``method="follow"``, to the pushing
+contour follower the paper argues against (:mod:`core2d.planner.follow`). A :class:`~core2d.sim.recorder.Recorder`
 between the two logs every motion (``result.motions``).
 """
 from __future__ import annotations
 
 from core2d.planner.finger import finger_probe
 from core2d.planner.flow import FLOWS
+from core2d.planner.follow import follow_contour
 from core2d.planner.run import explore
 from core2d.result import SliceResult
 from core2d.sim.contact import ContactModel
@@ -21,14 +23,14 @@ from core2d.sim.sensor import SensorModel
 
 __all__ = ["sense_slice", "METHODS"]
 
-METHODS = ("pulling", "paper", "finger")
+METHODS = ("pulling", "paper", "follow", "finger")
 
 
 def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: float | None = None,
                 tol: float | None = None, max_motions: int = 20000, max_areas: int = 4000,
                 bootstrap_count: int = 12, method: str = "pulling", directions: int = 32,
-                spacing: float | None = None, sensor: SensorModel | None = None
-                ) -> SliceResult:
+                spacing: float | None = None, sensor: SensorModel | None = None,
+                friction: float = 0.0) -> SliceResult:
     """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
@@ -42,14 +44,17 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
         (:class:`core2d.resolution.Resolution` derives every tolerance from both).
     max_motions, max_areas : int -- budgets; when hit, the areas still
         unknown are reported in ``result.unknown`` and ``stats.budget_hit``.
-    method : {'pulling', 'paper', 'finger'} -- the paper's algorithm with the
-        planner's additions, the paper's Fig. 16 flow alone
-        (:data:`core2d.planner.flow.PAPER`), or straight insertions on a grid
-        (:func:`core2d.planner.finger.finger_probe`).
+    method : {'pulling', 'paper', 'follow', 'finger'} -- the paper's algorithm
+        with the planner's additions, the paper's Fig. 16 flow alone
+        (:data:`core2d.planner.flow.PAPER`), a contour follower from the
+        first contact (:func:`core2d.planner.follow.follow_contour`), or
+        straight insertions on a grid (:func:`core2d.planner.finger.finger_probe`).
     directions, spacing : finger probing only -- insertion directions and
         line spacing (default eps / 2).
     sensor : SensorModel, optional -- noise and taxels of the readings
         (:mod:`core2d.sim.sensor`); default the paper's perfect sensing.
+    friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`;
+        default 0, frictionless). The planner is not told it.
 
     Returns
     -------
@@ -57,9 +62,11 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    probe = Recorder(Probe(contact, workspace, eps, probe_length, tol, sensor))
+    probe = Recorder(Probe(contact, workspace, eps, probe_length, tol, sensor, friction))
     if method == "finger":
         result = finger_probe(probe, eps, directions, spacing, max_motions)
+    elif method == "follow":
+        result = follow_contour(probe, eps, max_motions)
     else:
         result = explore(probe, eps, max_motions, max_areas, bootstrap_count, FLOWS[method])
     result.motions = probe.log()

@@ -26,7 +26,7 @@ from pathlib import Path
 import trimesh
 from manifold3d import Manifold
 
-from . import scenes_fields, scenes_profiles, scenes_solids  # noqa: F401  (register)
+from . import scenes_fields, scenes_profiles, scenes_solids, scenes_textured  # noqa: F401  (register)
 from .errors import MeshError, MeshWarning
 from .geometry import to_trimesh
 from .loading import SUPPORTED_EXTENSIONS, load_file

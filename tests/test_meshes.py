@@ -16,7 +16,7 @@ from meshes import MeshError, MeshWarning
 
 NAMES = meshes.names()
 # Scenes with no curved geometry: resolution cannot change them.
-STRAIGHT = {"deep_slot", "dovetail", "comb", "stepped_pyramid"}
+STRAIGHT = {"deep_slot", "dovetail", "comb", "stepped_pyramid", "textured_pocket", "knurled_pocket"}
 FORMATS = ["stl", "obj", "ply", "off", "glb"]
 
 

@@ -42,11 +42,11 @@ class CompiledEngine(PythonEngine):
         self._par = np.array((self.length, self.ang_tol, self.fan_step, self.tip_zone,
                               _WINDOWS[-1]))
         self._work = np.empty((5, _WINDOWS[-1]))
-        self._count = np.zeros(4, dtype=np.int64)
+        self._count = np.zeros(5, dtype=np.int64)
 
     def _run(self, kernel, *args):
         """Call a compiled search (:mod:`core2d.sim.kernels`) and book its
-        casts, rays, pushes and time as the Python engine would."""
+        casts, rays, pushes, jams and time as the Python engine would."""
         count = self._count
         count[:] = 0
         t0 = time.perf_counter()
@@ -57,6 +57,7 @@ class CompiledEngine(PythonEngine):
         stats.rays += int(count[1])
         stats.pushes += int(count[2])
         stats.push_attempts += int(count[3])
+        stats.jams += int(count[4])
         return out
 
     def cast(self, origins, dirs, max_dist):
@@ -98,7 +99,7 @@ class CompiledEngine(PythonEngine):
         res = probe.exact
         motion = (float(v[0]), float(v[1]), float(rot_dir), float(delta0), res.stop_short,
                   res.tip_zone, res.near, float(max_dist), float(max_steps),
-                  1.0 if guard_push else 0.0)
+                  1.0 if guard_push else 0.0, probe.friction)
         marks = np.zeros(9)
         for k, point in ((0, None if last is None else last.point), (3, stop), (6, leave)):
             if point is not None:

@@ -10,7 +10,8 @@ halved until either the motion is continuous again or the step is below
 ``tol``: then it is a real contact point jump (Case 2) and the motion stops.
 The controller also stops when the probe loses every contact (Case 2-3),
 when v.t > 0 is detected (Case 3, if guarded), when the joint cannot move
-along v (Case 4), or when a part of the probe reaches ``stop_at`` (P_fin): event
+along v (Case 4; with tip friction, also a pushing step inside the friction
+cone, which jams: :mod:`core2d.sim.friction`), or when a part of the probe reaches ``stop_at`` (P_fin): event
 ``"reached"`` when the tip's path passed it, ``"reached-body"`` otherwise;
 and when the tip passes ``leave_at``, the other end of the designated area
 (``"left"``: Definition 8's P_fin lay the other way).
@@ -23,6 +24,7 @@ import numpy as np
 
 from core2d.readings import TIP
 from core2d.sim.codes import Settle, TraceEvent
+from core2d.sim.friction import self_locked
 
 __all__ = ["compliant_trace", "python_steps", "settle_plan", "MAX_SETTLE"]
 
@@ -135,6 +137,7 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
     jump = res.tip_zone
     near = res.near
     L = probe.length
+    mu = probe.friction
     step = delta0
     travelled = 0.0
     sx, sy = (0.0, 0.0) if stop is None else (float(stop[0]), float(stop[1]))
@@ -150,12 +153,11 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
             if _distance_xy(sx, sy, jx, jy, (jx + L * c) - jx, (jy + L * s) - jy) <= near:
                 event = TraceEvent.REACHED_BODY  # a part of the probe other than the tip
                 break
-        if vx * c + vy * s > 0:
-            if guard_push:  # Case 3: the guard intercepts a pushing step
-                stats.push_attempts += 1
-                event = TraceEvent.PUSHING
-                break
-            stats.pushes += 1
+        pushing = vx * c + vy * s > 0
+        if pushing and guard_push:  # Case 3: the guard intercepts a pushing step
+            stats.push_attempts += 1
+            event = TraceEvent.PUSHING
+            break
         if travelled >= max_dist:
             event = TraceEvent.DONE
             break
@@ -181,10 +183,16 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
         if status == Settle.JAMMED:
             event = TraceEvent.BLOCKED
             break
+        if pushing and continuous and mu > 0 and self_locked(
+                mu, c, s, float(q[0]) - float(o[0]), float(q[1]) - float(o[1])):
+            stats.jams += 1  # the tip sticks: sensed as Case 4 (core2d.sim.friction)
+            event = TraceEvent.BLOCKED
+            break
         before = (probe.joint, (c, s))
         stats.joint_path += h
         travelled += h
         probe.joint, probe.theta = joint, theta
+        stats.pushes += pushing  # an executed pushing step
         if status == Settle.LOST:
             event = TraceEvent.LOST
             break

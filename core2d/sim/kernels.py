@@ -14,8 +14,8 @@ calling a contact model's *ray function* once per ray. They are driven by
 the named ones of :mod:`core2d.sim.codes`, shared with the Python engine.
 
 Arrays the searches share: ``par = (L, ang_tol, fan_step, tip_zone, window
-cap)``; ``work`` (5, cap) float scratch; ``count`` (4,) int64 -- casts,
-rays, pushes, push attempts -- incremented in place.
+cap)``; ``work`` (5, cap) float scratch; ``count`` (5,) int64 -- casts,
+rays, pushes, push attempts, jams -- incremented in place.
 
 A ray function is any C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)``
 writing ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), given
@@ -41,6 +41,9 @@ from numba.extending import intrinsic
 from core2d.sim.codes import REFINE as _REFINE
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.codes import Settle, TraceEvent
+from core2d.sim.friction import self_locked
+
+_self_locked = numba.njit(cache=True, nogil=True)(self_locked)  # the Python engine's test
 
 __all__ = ["cast", "fan", "sense_rays", "search", "search_from", "settle", "trace_steps"]
 
@@ -306,16 +309,16 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
 
     pose : ``[jx, jy, theta, joint_path]``, updated in place.
     motion : ``(vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps,
-        guard_push)``.
+        guard_push, mu)`` (mu: tip friction, :mod:`core2d.sim.friction`).
     marks : ``[has_last, last x, last y, has_stop, stop x, stop y, leave_far,
         leave x, leave y]``.
     plan : the settle plan of :func:`settle`. par, work, count : see the
-    module doc (all four counters incremented).
+    module doc (all five counters incremented).
 
     Returns ``(event, trace (k, 2), before (4,) joint and direction,
     primary (d, x, y) or d = nan)``, event a :class:`~core2d.sim.codes.TraceEvent`.
     """
-    vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps, guard = motion
+    vx, vy, rot_dir, delta0, dmin, jump, near, max_dist, max_steps, guard, mu = motion
     L, tip_zone = par[0], par[3]
     has_last, lx, ly = marks[0] > 0, marks[1], marks[2]
     has_stop, sx, sy = marks[3] > 0, marks[4], marks[5]
@@ -337,12 +340,11 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
                                      (jy + L * s) - jy) <= near:
             event = TraceEvent.REACHED_BODY
             break
-        if vx * c + vy * s > 0:
-            if guard > 0:  # Case 3: the guard intercepts a pushing step
-                count[3] += 1
-                event = TraceEvent.PUSHING
-                break
-            count[2] += 1
+        pushing = vx * c + vy * s > 0
+        if pushing and guard > 0:  # Case 3: the guard intercepts a pushing step
+            count[3] += 1
+            event = TraceEvent.PUSHING
+            break
         if travelled >= max_dist:
             event = TraceEvent.DONE
             break
@@ -363,10 +365,16 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
         if status == Settle.JAMMED:
             event = TraceEvent.BLOCKED
             break
+        if pushing and continuous and mu > 0 and _self_locked(mu, c, s, qx - lx, qy - ly):
+            count[4] += 1  # the tip sticks: sensed as Case 4
+            event = TraceEvent.BLOCKED
+            break
         before[0], before[1], before[2], before[3] = jx, jy, c, s
         pose[3] += h
         travelled += h
         jx, jy, theta = njx, njy, nth
+        if pushing:
+            count[2] += 1  # an executed pushing step
         if status == Settle.LOST:
             event = TraceEvent.LOST
             break

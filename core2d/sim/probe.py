@@ -5,9 +5,11 @@ A rigid probe of length L and negligible thickness hangs on a joint at
 Contacts come from a :class:`core2d.sim.contact.ContactModel` through batched
 ray casts: a fan of rays from the joint for a swing, one ray from the tip for
 an insertion, rays along the probe for a translation. Contacts are resolved
-to ``tol`` by bisection with refining fans. No dynamics, no friction: the
-pulling strategy is what avoids pushing, and :attr:`stats.pushes` counts the
-trace steps that were executed in sliding contact with v.t > 0.
+to ``tol`` by bisection with refining fans. No dynamics; friction at the
+tip only when asked (``friction`` = mu, :mod:`core2d.sim.friction`: a
+pushing trace step inside the friction cone jams). :attr:`stats.pushes`
+counts the trace steps executed in sliding contact with v.t > 0,
+:attr:`stats.jams` the pushing steps that jammed.
 
 Every ray goes through the probe's ray engine (:mod:`core2d.sim.engine`),
 chosen once here: compiled when the contact model has a ray function
@@ -58,11 +60,14 @@ class Probe:
         How the readings depart from the truth (:mod:`core2d.sim.sensor`;
         default exact). Its stated noise and taxel spacing are part of the
         robot's ``resolution``.
+    friction : float, optional
+        Coulomb coefficient mu at the tip (default 0: frictionless, the
+        paper's simulator); the planner is not told it.
     """
 
     def __init__(self, contact: ContactModel, workspace, eps: float,
                  length: float | None = None, tol: float | None = None,
-                 sensor: SensorModel | None = None):
+                 sensor: SensorModel | None = None, friction: float = 0.0):
         self.contact = contact
         self.center = np.asarray(workspace[0], dtype=np.float64)
         self.radius = float(workspace[1])
@@ -75,6 +80,9 @@ class Probe:
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
         self.sensor = Sensor(model, self.length)
+        self.friction = float(friction)
+        if not self.friction >= 0:
+            raise ValueError(f"friction must be >= 0, got {friction!r}")
         self.stats = SenseStats()
         self.engine = make_engine(contact, self.stats, self.length, res)
         # the angular fan spacing and resolution of the searches, and the tip

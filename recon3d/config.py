@@ -36,8 +36,9 @@ from recon3d.param import Param, param
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
            "default_jobs", "COARSE", "METHODS"]
 
-METHODS = ("pulling", "paper")
-"""``--method``: the planner's flows (:mod:`core2d.planner.flow`)."""
+METHODS = ("pulling", "paper", "follow")
+"""``--method``: the planner's flows (:mod:`core2d.planner.flow`) and the pushing
+contour follower (:mod:`core2d.planner.follow`)."""
 
 COARSE = 2.0
 """``--slices auto`` senses first at COARSE x eps (:mod:`recon3d.sensing.adaptive`)."""
@@ -146,17 +147,31 @@ class RunConfig:
         doc=(("`embree` (in-plane ray casts on the mesh), `exact` (2D polygon "
               "reference) or `trimesh` (trimesh's generic ray engine; ≈ 20–35 × slower than "
               "Embree per motion, for comparison)"),))
-    method: Literal["pulling", "paper"] = param(
+    method: Literal["pulling", "paper", "follow"] = param(
         "pulling", choices=METHODS, shown_default="`pulling`", metavar="M",
         check=lambda v, n: check_choice(v, n, METHODS),
         help="pulling (default: the paper's algorithm with the planner's map, deferral, "
-        "revisits and audit) or paper (the paper's Fig. 16 flow alone: dead ends and "
-        "Area(G) = 0 become W3 at once, section 4.2.1)",
+        "revisits and audit), paper (the paper's Fig. 16 flow alone: dead ends and "
+        "Area(G) = 0 become W3 at once, section 4.2.1) or follow (a contour follower from "
+        "the first contacts, pushing on one side: the strategy the paper argues against)",
         doc=(("`pulling`: the paper's algorithm with the planner's additions (its map of what "
               "it recorded, deferral and revisits of dead ends, W3 only with a proof, the "
               "audit of loose ends); `paper`: the paper's Fig. 16 flow alone (dead ends and "
-              "Area(G_i) = 0 become W3 at once, §4.2.1). Both write the same outputs; "
+              "Area(G_i) = 0 become W3 at once, §4.2.1); `follow`: a contour follower "
+              "tracing both ways from each first contact without the concave point search "
+              "(Fig. 2(a): it pushes on one side; no W3). All write the same outputs; "
               "`metrics.json` records it"),))
+    friction: float = param(
+        0.0, parse=float, metavar="MU", shown_default="0",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="Coulomb friction coefficient mu at the probe tip: a pushing trace step whose "
+        "rod axis lies within atan(mu) of the contact normal jams (sensed as the joint "
+        "blocked); pulling steps slide (default 0: no friction)",
+        doc=(("quasi-static Coulomb friction at the tip (`core2d.sim.friction`): a trace "
+              "step that pushes (v·t > 0) with the rod axis within atan(MU) of the contact "
+              "normal jams -- the tip sticks, the step is not made, the robot reads Case 4 "
+              "-- and a pulling step slides; `stats.jams` counts the jams, `stats.pushes` "
+              "the pushing steps made. The planner is not told MU"),))
     max_motions: int = param(
         20000, parse=int, metavar="M", shown_default="20000", check=lambda v, n: at_least(v, n),
         help="motion budget per slice (default 20000)",

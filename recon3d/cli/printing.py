@@ -111,7 +111,7 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     lines += [f"  {h}" for h in chords]
     lines.append(f"  cost motions {t.get('motions', 0)}  rays {t.get('rays', 0)}  pushes "
                  f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
-                 f"{t.get('push_attempts', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
+                 f"{t.get('push_attempts', 0)}, jams {t.get('jams', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
                  f"{format_seconds(t.get('robot_time_s'))} (probe {_speed(run.config)} + "
                  f"{run.config.motion_overhead:g} s/motion)")
     several = [s for s in run.slices if s.outer_loops > 1]

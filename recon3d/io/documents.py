@@ -118,7 +118,8 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
     ``probe_speed`` parameter is in mm/s). With ``--slices auto`` each slice's
     ``index`` is its position in its family and ``candidate`` its candidate
     plane, and the document ends with ``adaptive`` (``run.adaptive``). A run with a
-    sensor model (``noise`` or ``taxel``) records it under ``sensor``.
+    sensor model (``noise`` or ``taxel``) records it under ``sensor``, one with
+    tip friction its coefficient under ``friction``.
     """
     cfg = run.config
     total = dict(run.totals)
@@ -145,6 +146,8 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
         doc["sensor"] = {"noise": float(cfg.noise), "taxel": float(cfg.taxel),
                          "seed": int(cfg.seed), "unit": "eps",
                          "metric_tol": "eps / 2 + 2 noise (the *_sensor metrics)"}
+    if cfg.friction:  # absent: no friction, the paper's simulation
+        doc["friction"] = float(cfg.friction)
     if run.adaptive is not None:
         doc["adaptive"] = run.adaptive
     return doc

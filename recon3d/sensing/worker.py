@@ -40,10 +40,11 @@ class SenseSettings:
     eps, tol : float -- the paper's eps and the contact resolution.
     backend : str -- one of ``slicer.BACKENDS`` ('embree', 'exact', 'trimesh').
     max_motions, bootstrap : int -- per-slice budget and bootstrap insertions.
-    method : str -- the planner's flow, ``'pulling'`` or ``'paper'``.
+    method : str -- ``'pulling'``, ``'paper'`` or ``'follow'`` (:func:`core2d.sense_slice`).
     noise, taxel : float -- the sensor's noise and taxel spacing, in eps
         (:mod:`core2d.sim.sensor`; 0: perfect sensing).
     seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
+    friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`; 0: none).
     """
 
     axes: tuple
@@ -57,6 +58,7 @@ class SenseSettings:
     noise: float = 0.0
     taxel: float = 0.0
     seed: int = 0
+    friction: float = 0.0
 
     def sensor(self, family: int, index: int) -> SensorModel | None:
         """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
@@ -152,7 +154,7 @@ class WorkerState:
         sensor = st.sensor(family, index)
         result = core2d.sense_slice(cut.contact(st.backend), workspace, st.eps, tol=st.tol,
                                     max_motions=st.max_motions, bootstrap_count=st.bootstrap,
-                                    method=st.method, sensor=sensor)
+                                    method=st.method, sensor=sensor, friction=st.friction)
         if not cut.loops or cut.open_chains:
             return SliceRun(None, family, index, result, no_reference_metrics(result, st),
                             workspace, ContourTruth.empty())

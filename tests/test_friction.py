@@ -18,6 +18,7 @@ from core2d.sim.friction import self_locked
 from core2d.sim.probe import Probe
 from slicer import slice_mesh
 from slicer.contact.exact import ExactContact
+from test_core2d_kernels import _PythonPath
 
 
 FLOOR = [np.array([[0, 0], [100, 0], [100, 50], [0, 50]], float)]
@@ -92,16 +93,6 @@ def _cut(name, index, count=4):
     return cut, (center, radius + eps), eps
 
 
-class _PythonPath:
-    """The Embree contact model without its ray function (the Python engine)."""
-
-    def __init__(self, inner):
-        self.inner, self.fan = inner, inner.fan
-
-    def cast(self, origins, dirs, max_dist):
-        return self.inner.cast(origins, dirs, max_dist)
-
-
 def _everything(res):
     out = {k: [np.asarray(a).tolist() for a in getattr(res, k)]
            for k in ("w1", "w2", "w3", "unknown")}
@@ -127,6 +118,16 @@ def test_mu_zero_reproduces_the_frictionless_run_bit_for_bit(name, index, engine
         assert _everything(default) == _everything(zero)
     assert default.stats.pushes > 0  # the follower pushed, and no jam without friction
     assert default.stats.jams == 0
+
+
+@pytest.mark.parametrize("name,index", [("fig17_pocket", 1), ("textured_pocket", 1)])
+def test_both_engines_jam_alike(name, index):
+    cut, ws, eps = _cut(name, index)
+    contact = cut.contact("embree")
+    fast = sense_slice(contact, ws, eps, method="follow", friction=0.6)
+    slow = sense_slice(_PythonPath(contact), ws, eps, method="follow", friction=0.6)
+    assert fast.stats.jams > 0
+    assert _everything(fast) == _everything(slow)
 
 
 def test_friction_must_not_be_negative():

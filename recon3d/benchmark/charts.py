@@ -8,7 +8,7 @@ import numpy as np
 
 from recon3d.viz import libs
 
-__all__ = ["pareto_chart", "baseline_chart", "stability_chart"]
+__all__ = ["pareto_chart", "baseline_chart", "stability_chart", "claims_chart"]
 
 
 def _plt():
@@ -185,5 +185,50 @@ def stability_chart(rows, breaks, path) -> None:
         ax.axis("off")
     fig.suptitle("Stability: coverage / F@1% per method; x = crash, triangle = budget hit, "
                  "dotted line = where the method breaks (crash, budget, or a drop > 0.05)")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+_CLAIMS = (("coverage", "2D reachable coverage"), ("jams", "jams (pushes stuck)"),
+           ("pushes", "pushing steps made"))
+
+
+def claims_chart(rows, path) -> None:
+    """Coverage, jams and executed pushes against tip friction mu: one column
+    per case, one line per method (claims.csv)."""
+    plt = _plt()
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    col = _colours(methods)
+    marks = dict(zip(methods, "os^Dv<>"))
+    fig, axes = plt.subplots(len(_CLAIMS), len(cases), figsize=(max(11.0, 3.2 * len(cases) + 1), 9),
+                             squeeze=False, sharex=True, constrained_layout=True)
+    for j, case in enumerate(cases):
+        for i, (key, label) in enumerate(_CLAIMS):
+            ax = axes[i, j]
+            for k, m in enumerate(methods):
+                sel = sorted((r for r in rows if r["case"] == case and r["method"] == m),
+                             key=lambda r: r["mu"])
+                shift = (k - (len(methods) - 1) / 2) * 0.008  # overlapping lines stay visible
+                ax.plot([r["mu"] + shift for r in sel], [r[key] for r in sel], marker=marks[m],
+                        ms=5, lw=1.3, color=col[m], label=m)
+            if key == "coverage":
+                ax.set_ylim(-0.02, 1.05)
+                ax.set_title(case.replace(".ply", "").replace(".stl", ""), fontsize=10)
+            else:
+                ax.set_ylim(bottom=-0.05 * max(1.0, max(r[key] for r in rows if r["case"] == case)))
+            if j == 0:
+                ax.set_ylabel(label)
+            if i == len(_CLAIMS) - 1:
+                ax.set_xlabel("tip friction mu")
+            ax.grid(True, alpha=0.3)
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    names = {"pulling": "pulling (default planner)", "paper": "paper (Fig. 16 alone)",
+             "follow": "follow (pushing contour follower)", "finger": "finger probing"}
+    fig.legend(handles, [names.get(n, n) for n in labels], loc="outside lower center",
+               ncol=min(len(methods), 4), fontsize=9)
+    fig.suptitle("Pulling against pushing under Coulomb friction at the tip, middle z-slice "
+                 "per case\n(a push with the rod inside the friction cone jams; pulls slide; "
+                 "overlapping lines are shifted slightly in mu)")
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -5,7 +5,9 @@ Parts (``--parts``; all by default):
 * ``pareto`` -- :mod:`.pareto`: pareto.csv / pareto.png, adaptive.csv;
 * ``backends`` -- :mod:`.backends`: backends.csv;
 * ``baseline`` -- :mod:`.baseline`: baseline.csv / baseline.png;
-* ``stability`` -- :mod:`.stability`: stability.csv / stability.png, breaks.csv.
+* ``stability`` -- :mod:`.stability`: stability.csv / stability.png, breaks.csv;
+* ``claims`` -- :mod:`.claims`: claims.csv / claims.png, claims_summary.csv (pulling
+  against pushing under tip friction).
 
 All tasks of all parts go to one Dask cluster (:func:`recon3d.jobs.cluster.run_tasks`),
 longest first. Files are written at the end, all together (:class:`recon3d.io.staged.Staged`).
@@ -17,20 +19,21 @@ import logging
 import math
 import time
 
-from recon3d.benchmark import backends, baseline, charts, pareto, stability
+from recon3d.benchmark import backends, baseline, charts, claims, pareto, stability
 from recon3d.io.staged import Staged
 from recon3d.jobs.cluster import run_tasks
 
 __all__ = ["PARTS", "run_bench", "dispatch", "write_csv"]
 
-PARTS = ("pareto", "backends", "baseline", "stability")
+PARTS = ("pareto", "backends", "baseline", "stability", "claims")
 
 
 def dispatch(task: dict) -> dict:
     """Run one task of any part (the function Dask workers call): its rows and seconds."""
     logging.getLogger("slicer").setLevel(logging.ERROR)  # planes near vertices: on purpose
     fn = {"pareto": pareto.run_case, "backends": backends.compare_slice,
-          "baseline": baseline.compare_probing, "stability": stability.run_factor}[task["part"]]
+          "baseline": baseline.compare_probing, "stability": stability.run_factor,
+          "claims": claims.run_claims}[task["part"]]
     t0 = time.perf_counter()
     try:
         rows = fn(task)
@@ -46,7 +49,8 @@ def _tasks(parts, quick):
     made = {"pareto": lambda: pareto.pareto_tasks(plan),
             "backends": lambda: backends.backend_tasks(quick),
             "baseline": lambda: baseline.baseline_tasks(quick),
-            "stability": lambda: stability.stability_tasks(quick)}
+            "stability": lambda: stability.stability_tasks(quick),
+            "claims": lambda: claims.claims_tasks(quick)}
     tasks = []
     for part in parts:
         tasks += [dict(t, part=part) for t in made[part]()]
@@ -55,7 +59,7 @@ def _tasks(parts, quick):
         if t["part"] == "pareto":
             n = t.get("max_slices") if t["slices"] == "auto" else t["slices"]
             return n / t["eps_share"] / 200
-        return {"backends": 60, "baseline": 30, "stability": 10}[t["part"]]
+        return {"backends": 60, "baseline": 30, "stability": 10, "claims": 20}[t["part"]]
 
     return sorted(tasks, key=weight, reverse=True), plan
 
@@ -81,6 +85,21 @@ def _table(lines, head, rows, keys, fmts):
     lines.append("  ".join(head))
     for r in rows:
         lines.append("  ".join(_fmt(r[k], f) for k, f in zip(keys, fmts)))
+
+
+def _claims(lines, stage, rows) -> None:
+    """claims.csv, claims_summary.csv, claims.png and the table's lines."""
+    rows = sorted(rows, key=lambda r: (r["case"], claims.METHODS.index(r["method"]), r["mu"]))
+    write_csv(stage / "claims.csv", rows)
+    summ = claims.summary(rows)
+    write_csv(stage / "claims_summary.csv", summ)
+    charts.claims_chart(rows, stage / "claims.png")
+    lines.append("\npulling against pushing under tip friction mu (middle z-slice per case; "
+                 "coverage: mean over the cases, jams / pushes / motions: sums):")
+    _table(lines, ["method", "mu", "cases", "coverage", "jams", "pushes", "motions",
+                   "robot time s"], summ,
+           ["method", "mu", "cases", "coverage", "jams", "pushes", "motions", "robot_time_s"],
+           ["", "g", "d", ".3f", "d", "d", "d", ".0f"])
 
 
 def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PARTS,
@@ -147,6 +166,8 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
             lines.append("\nstability: where each method breaks (first value; none = never):")
             _table(lines, ["factor", "method", "breaks at", "why"], breaks,
                    ["factor", "method", "breaks_at", "why"], ["", "", "g", ""])
+        if by["claims"]:
+            _claims(lines, stage, by["claims"])
         write_csv(stage / "tasks.csv", timing)
         failed = [t for t in timing if t["error"]]
         if failed:

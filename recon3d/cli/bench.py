@@ -1,8 +1,8 @@
 """``recon3d bench --out DIR [--quick] [--scheduler ADDRESS]``: the 3D benchmark.
 
 Sweep eps x slices (uniform and --slices auto), compare the contact
-backends, dense finger probing against pulling, and the stability of each
-method; write CSV + PNG into DIR and print a short table (README 'recon3d
+backends, dense finger probing against pulling, the stability of each
+method, and pulling against a pushing contour follower under tip friction; write CSV + PNG into DIR and print a short table (README 'recon3d
 bench'). Runs on Dask: a local cluster by default, an existing one with
 --scheduler.
 """
@@ -14,7 +14,8 @@ from recon3d.cli.batch import add_cluster_flags
 
 __all__ = ["HELP", "add_arguments", "command"]
 
-HELP = "speed against accuracy, finger-probing baseline, backends, stability"
+HELP = ("speed against accuracy, finger-probing baseline, backends, stability, pulling "
+        "against pushing under friction")
 
 
 def add_arguments(p) -> None:
@@ -23,7 +24,7 @@ def add_arguments(p) -> None:
     p.add_argument("--quick", action="store_true",
                    help="small sweeps (about 3 minutes on 2 cores)")
     p.add_argument("--parts", default=None,
-                   help="comma-separated subset of pareto,backends,baseline,stability")
+                   help=f"comma-separated subset of {','.join(PARTS)}")
 
 
 def command(args) -> int:

@@ -211,12 +211,13 @@ def claims_chart(rows, path) -> None:
                              key=lambda r: r["mu"])
                 shift = (k - (len(methods) - 1) / 2) * 0.008  # overlapping lines stay visible
                 ax.plot([r["mu"] + shift for r in sel], [r[key] for r in sel], marker=marks[m],
-                        ms=5, lw=1.3, color=col[m], label=m)
+                        ms=9 - 1.5 * k, lw=2.4 - 0.4 * k, color=col[m], label=m)  # under: larger
             if key == "coverage":
                 ax.set_ylim(-0.02, 1.05)
                 ax.set_title(case.replace(".ply", "").replace(".stl", ""), fontsize=10)
             else:
                 ax.set_ylim(bottom=-0.05 * max(1.0, max(r[key] for r in rows if r["case"] == case)))
+                ax.yaxis.set_major_locator(libs.ticker().MaxNLocator(integer=True))
             if j == 0:
                 ax.set_ylabel(label)
             if i == len(_CLAIMS) - 1:

@@ -10,13 +10,18 @@ difference under tip friction (:mod:`core2d.sim.friction`):
   insertions from the workspace circle (:func:`core2d.planner.bootstrap.bootstrap`,
   as the pulling planner starts); no local concave point search (§4.2.2);
 * **trace both directions** from each first contact D with the compliant
-  tracing motion of §4.3 as Theorem 4 plans it at D -- v in K1 cap K2 or
-  K1 cap not-K2, tau = tau0 sgn(v, t*) (eq. 2,
-  :func:`core2d.planner.regions.trace_direction`) -- and v held for the
-  whole motion, as the paper's tracing does. From a point that is not a
-  local concave point the contour turns the probe on one side until
-  v.t > 0: the trace pushes (Fig. 2(a)). There is no Case 3 guard: pushing
-  is the point. A motion that ran its course is planned again at its end;
+  tracing motion of §4.3 (no Case 3 guard: pushing is the point), in
+  motions of ``CHUNK`` eps of joint travel. The first direction starts as
+  Theorem 4 plans it at D -- v in K1 cap K2 (or, when the tip makes no
+  progress that way, K1 cap not-K2), tau = tau0 sgn(v, t*) (eq. 2,
+  :func:`core2d.planner.regions.trace_direction`): a pull. After each
+  motion v is re-aimed along the last eps / 2 of traced contour (a
+  follower follows the surface) and the torque is held (constant torque).
+  The second direction starts at D again with v = minus the contour's
+  direction at D and the same torque, which still turns the rod towards
+  the contact normal and so keeps the tip pressed: the tip leads, the rod
+  is driven into the surface wherever it leans back, v.t > 0 -- the
+  pushing side of Fig. 2(a);
 * **the paper's events where they apply** end a direction: Case 2 with the
   new contact on the probe's side (a dead end: the body rests on a convex
   corner), Case 2-3 (contact lost), Case 4 (the joint cannot move along v --

@@ -120,3 +120,16 @@ def test_camera_fit_puts_the_longest_extent_across_the_image(extent):
     assert int(np.argmax(spans)) == longest
     if min(extent) < 0.5 * sorted(extent)[1]:  # flat: lies flat, thin axis up
         assert up[int(np.argmin(extent))] == 1.0
+
+
+def test_the_picture_headline_wraps_long_lines_and_drops_no_word():
+    """coverage.png's headline: a long unknown-chord line wraps (indented), nothing is cut."""
+    from recon3d.viz.plot import WIDTH, headline_rows
+    chords = [{"axis": "z", "slice": 3, "middle": [12.3456, 40.1234, 7.5], "length": 4.77,
+               "cause": "dead end", "on_contour": 0.98, "note": "word " * 60}]
+    lines = chord_lines({"unknown_chords": chords})
+    assert max(len(s) for s in lines) > WIDTH
+    rows = headline_rows(lines)
+    assert max(len(r) for r in rows) <= WIDTH
+    assert " ".join(rows).split() == " ".join(lines).split()
+    assert len(rows) > len(lines) and rows[-1].startswith("      ")  # continued, indented

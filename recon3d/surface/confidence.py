@@ -32,7 +32,8 @@ from scipy.spatial import cKDTree
 from recon3d.surface.closure import sample_pieces
 from recon3d.surface.warp import boundary_samples
 
-__all__ = ["ConfidenceSettings", "seen_map", "agreement", "cone", "between_confidence"]
+__all__ = ["ConfidenceSettings", "seen_map", "agreement", "cone", "between_confidence",
+           "in_plane_share"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +47,9 @@ class ConfidenceSettings:
     proximity : float -- between slices, the agreement counts 1 / (1 + (s / proximity)^2) at
         distance ``s`` from the nearer slice plane (the closer a family's data, the more).
     cone : bool -- an empty claim between slices counts only inside the 45-degree cones.
+    facing : float -- exponent of the weight by the surface's facing (:func:`in_plane_share`);
+        0 switches it off.
+    facing_floor : float -- least facing weight (a lid between slices, seen by no family).
     """
 
     near: float = 24.0
@@ -54,6 +58,8 @@ class ConfidenceSettings:
     floor: float = 0.05
     proximity: float = 2.0
     cone: bool = False
+    facing: float = 0.0
+    facing_floor: float = 0.05
 
 
 def seen_map(region, f: np.ndarray, grid, settings: ConfidenceSettings = ConfidenceSettings()
@@ -137,3 +143,27 @@ def between_confidence(ca, cb, w, agree, grid, gap: float,
     prox = 1 / (1 + (dist / (settings.proximity * grid.step)) ** 2)
     trust = np.maximum(np.maximum(near, agree * prox), settings.floor)
     return np.maximum(((1 - w) * ca + w * cb) * trust, 1e-3).astype(np.float32)
+
+
+def in_plane_share(vol: np.ndarray, grid) -> np.ndarray:
+    """(layers, ny, nx) float32: how much the family's own surface faces its slice planes.
+
+    The share of the field's 3D gradient that lies in the slice plane, ``|grad_uv f| / |grad f|``
+    = sin of the angle between the surface normal and the slicing axis (a stacked 2D signed
+    distance has ``|grad_uv f| = 1`` and ``df/dh = cot`` of that angle). 1 on a wall the
+    slices cut across (sensed as W1/W2 in every slice), 0 on a floor or lid parallel to the
+    planes (between slices only interpolated, §3: the probe moves in the slice plane). 1 where
+    the field is flat (truncated).
+
+    Parameters
+    ----------
+    vol : (layers, ny, nx) float -- the family's field (positive inside).
+    grid : FamilyGrid
+    """
+    h = grid.layer_height(np.arange(grid.layers))
+    gh, gy, gx = np.gradient(vol.astype(np.float32), h, grid.step, grid.step)
+    gin = np.hypot(gx, gy)
+    norm = np.hypot(gin, gh)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(norm > 1e-6, gin / norm, 1.0)
+    return share.astype(np.float32)

@@ -30,7 +30,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
-                                        seen_map)
+                                        in_plane_share, seen_map)
 from recon3d.surface.warp import WarpSettings, warp_gap
 
 __all__ = ["ROUTES", "FamilyField", "FamilyGrid", "family_grid", "slice_sdf", "family_volume", "grid_step"]
@@ -223,4 +223,7 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
         conf[last] = seen[-1]
     small = np.abs(vol) < _MIN_VALUE * grid.step  # interpolation can cross 0 exactly
     vol[small] = np.copysign(_MIN_VALUE * grid.step, vol[small])
+    if confidence and trust.facing > 0:  # a family knows the walls its planes cut across
+        share = np.maximum(in_plane_share(vol, grid), trust.facing_floor)
+        conf *= share ** np.float32(trust.facing)
     return vol, conf

@@ -58,7 +58,7 @@ class FusionSettings:
     power: float = 2.0
     outside: float = 1e-6
     speck: float = 3.0
-    extend: float = 0.3
+    extend: float = 0.1
     extend_scale: float = 4.0
 
 

@@ -27,7 +27,7 @@ from recon3d.viz import libs
 from recon3d.viz.view import fit_view
 
 __all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "DISTANCE_COLORS",
-           "DISTANCE_MAX", "WIDTH", "hex_rgb", "prepare_offscreen", "coverage_plotter",
+           "DISTANCE_MAX", "WIDTH", "HEADLINE_ROWS", "headline_rows", "hex_rgb", "prepare_offscreen", "coverage_plotter",
            "save_png", "has_display"]
 
 LABEL_COLORS = {1: "#3a7fd5", 2: "#4daf4a", 3: "#e41a1c", 4: "#d4d4d4", 5: "#c9a36b"}
@@ -40,7 +40,9 @@ DISTANCE_COLORS = ("#1a9850", "#91cf60", "#fee08b", "#fc8d59", "#d73027", "#a500
 """Bins of 0.5% of the diagonal from 0 to DISTANCE_MAX; beyond it ``DISTANCE_ABOVE``."""
 DISTANCE_MAX, DISTANCE_ABOVE = 3.0, "#40004b"
 WIDTH = 140
-"""Characters of a headline line in the picture (longer lines end in ``...``)."""
+"""Characters of a headline line in the picture (longer lines wrap, indented)."""
+HEADLINE_ROWS = 10
+"""Rows the headline panel holds at font size 9; more rows shrink the font to fit."""
 
 
 def has_display() -> bool:
@@ -198,11 +200,34 @@ def _panel_b(p, gt):
     return pv
 
 
+def headline_rows(lines, width: int = WIDTH) -> list[str]:
+    """The headline's lines wrapped at ``width`` characters, nothing cut.
+
+    A continuation row is indented four spaces past its line's own indent.
+
+    >>> headline_rows(["  abc def ghi", ""], width=9)
+    ['  abc def', '      ghi']
+    """
+    rows = []
+    for line in (str(s) for s in lines):
+        if not line.strip():
+            continue
+        lead = " " * (len(line) - len(line.lstrip()))
+        rows += textwrap.wrap(line.strip(), width, initial_indent=lead, subsequent_indent=lead + "    ",
+                              break_long_words=True, break_on_hyphens=False) \
+            if len(line) > width else [line]
+    return rows
+
+
 def _headline(p, blocks, title):
     lines = [str(s) for s in blocks.field_data["headline"]] \
         if "headline" in blocks.field_data.keys() else []
-    lines = [textwrap.shorten(s, WIDTH, placeholder=" ...") for s in lines if s] or [title]
-    p.add_text("\n".join(lines), position=(0.01, 0.04), viewport=True, font_size=9,
+    size = 9
+    rows = headline_rows(lines) or [title]
+    if len(rows) > HEADLINE_ROWS:  # smaller type, wider rows: everything stays in the panel
+        size = max(5, int(9 * HEADLINE_ROWS / len(rows)))
+        rows = headline_rows(lines, int(WIDTH * 9 / size))
+    p.add_text("\n".join(rows), position=(0.01, 0.04), viewport=True, font_size=size,
                color="black", font="courier")
 
 

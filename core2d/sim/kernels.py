@@ -169,11 +169,11 @@ def _refine(fn, ctx, jx, jy, a_before, a_after, hd, hx, hy, want_blocked, par, w
     if want_blocked:
         return a_before, bd, bx, by
     if not have:  # the blocked side is the start angle itself
-        ang[0] = a_before
-        _scan(fn, ctx, jx, jy, ang, 1, L, True, d, px, py)
+        res = np.empty(3)
+        _call(fn, ctx, jx, jy, np.cos(a_before), np.sin(a_before), L, res.ctypes.data)
         count[0] += 1
         count[1] += 1
-        bd, bx, by = d[0], px[0], py[0]
+        bd, bx, by = res[0], res[1], res[2]
     return a_after, bd, bx, by
 
 

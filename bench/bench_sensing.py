@@ -144,7 +144,10 @@ def scene_row(scene, runs_b, runs_a, cmp_rows) -> dict:
     per = lambda doc, key: sum(s[key] for s in doc["slices"]) / max(n, 1)  # noqa: E731
     after = statistics.median(per(d, "seconds") for d in runs_a)
     before = statistics.median(per(d, "seconds") for d in runs_b) if runs_b else None
-    raw = lambda docs, key: docs[0][key] / max(n, 1) if docs and key in docs[0] else None  # noqa: E731
+
+    def raw(docs, key):
+        return docs[0][key] / max(n, 1) if docs and key in docs[0] else None
+
     return dict(scene=scene, slices=n, before=before, after=after,
                 speedup=before / after if before else None,
                 raw=raw(runs_a, "raw_seconds"), large=raw(runs_a, "large_seconds"),

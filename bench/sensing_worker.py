@@ -163,8 +163,9 @@ def _raw(core2d, cut, eps, tol) -> dict:
         engine_module.CompiledEngine = compiled
     logged.flush()
     replay.finish()
-    if replay.rays != res.stats.rays:
-        raise RuntimeError(f"replayed {replay.rays} rays, sensing cast {res.stats.rays}")
+    if (replay.rays, replay.casts) != (res.stats.rays, res.stats.casts):
+        raise RuntimeError(f"replayed {replay.rays} rays in {replay.casts} casts, sensing "
+                           f"cast {res.stats.rays} in {res.stats.casts}")
     return dict(raw_seconds=replay.as_cast, large_seconds=replay.large,
                 replayed_rays=replay.rays, replayed_casts=replay.casts)
 

@@ -147,9 +147,16 @@ def _logged_engine(base):
 
 def _raw(core2d, cut, eps, tol) -> dict:
     """Sense ``cut`` again through a ray log and replay its rays on raw embreex."""
+    import importlib.util
+
     import core2d.sim.engine as engine_module
 
-    from bench.ray_log import RayLog
+    # this worker's ray log (the checkout under test may have none, or an older one)
+    spec = importlib.util.spec_from_file_location("_ray_log", Path(__file__).with_name(
+        "ray_log.py"))
+    ray_log = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ray_log)
+    RayLog = ray_log.RayLog
 
     contact = cut.contact("embree")
     replay = _Replay(contact.scene)
@@ -229,7 +236,6 @@ def main(argv) -> int:
                          geometry=_geometry(res)))
     doc = dict(scene=scene, slices=rows, peak_mib=_peak_mib(), base_mib=base)
     if raw:
-        sys.path.insert(1, str(Path(__file__).resolve().parents[1]))  # bench.ray_log
         for cut, row in zip(cuts, rows):
             row.update(_raw(core2d, cut, eps, tol))
         doc["raw_seconds"] = sum(r["raw_seconds"] for r in rows)

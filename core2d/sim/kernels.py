@@ -43,7 +43,6 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from core2d.sim.codes import REFINE as _REFINE
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.codes import Settle, TraceEvent
 

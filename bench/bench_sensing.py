@@ -10,9 +10,11 @@ Embree backend) it prints, measured in one run:
   for this checkout, each scene's runs alternating before / after
   ``--repeat`` times (median);
 * ``speed-up`` -- before / after;
-* ``raw s`` and ``x raw`` -- the time embreex alone needs for the same rays
-  in the same calls (every batch this checkout cast, replayed on the same
-  scene), and after / raw;
+* ``x large`` -- sensing CPU over the CPU embreex alone needs for the same
+  rays in calls of 65,536 (Embree's throughput), and ``x cast`` -- over
+  embreex on the same rays in the casts as issued: every ray this checkout
+  cast, logged ray by ray (:mod:`bench.ray_log`) and replayed on the same
+  scene (``before->after`` with ``--raw-before``);
 * ``rays``, ``casts``, ``motions`` per slice (before -> after when they differ);
 * ``same`` -- whether this checkout gives the same result as the commit
   ``--reference`` (default: ``--before``; give the last commit that changed
@@ -30,8 +32,10 @@ bounded. Times are CPU seconds: the machine may be shared; compare the
 ratios, which are measured side by side.
 
     python -m bench.bench_sensing [--slices 4] [--repeat 1] [--scenes a,b] [--before REV]
-                                  [--reference REV] [--no-before] [--tols 0.05,0.005]
-                                  [--json out.json]
+                                  [--reference REV] [--no-before] [--raw-before]
+                                  [--tols 0.05,0.005] [--json out.json]
+
+The first line printed names both commits (``+dirty``: uncommitted changes).
 """
 from __future__ import annotations
 
@@ -133,15 +137,22 @@ def _same(rows) -> str:
     return f"{worst:.1%} of samples" + ("" if metrics else " (metrics differ)")
 
 
-def scene_row(scene, runs_b, runs_a, raw, cmp_rows) -> dict:
-    """Summary of one scene (per slice: seconds, counts; whole: ratios)."""
+def scene_row(scene, runs_b, runs_a, cmp_rows) -> dict:
+    """Summary of one scene (per slice: seconds, counts; whole: ratios). The first run
+    of each side carries its raw-Embree replay (``raw_seconds``, ``large_seconds``)."""
     n = len(runs_a[0]["slices"])
     per = lambda doc, key: sum(s[key] for s in doc["slices"]) / max(n, 1)  # noqa: E731
     after = statistics.median(per(d, "seconds") for d in runs_a)
     before = statistics.median(per(d, "seconds") for d in runs_b) if runs_b else None
+
+    def raw(docs, key):
+        return docs[0][key] / max(n, 1) if docs and key in docs[0] else None
+
     return dict(scene=scene, slices=n, before=before, after=after,
                 speedup=before / after if before else None,
-                raw=raw["raw_seconds"] / max(n, 1), rays=per(runs_a[0], "rays"),
+                raw=raw(runs_a, "raw_seconds"), large=raw(runs_a, "large_seconds"),
+                raw_before=raw(runs_b, "raw_seconds"), large_before=raw(runs_b, "large_seconds"),
+                rays=per(runs_a[0], "rays"),
                 casts=per(runs_a[0], "casts"), motions=per(runs_a[0], "motions"),
                 rays_before=per(runs_b[0], "rays") if runs_b else None,
                 casts_before=per(runs_b[0], "casts") if runs_b else None,
@@ -150,23 +161,57 @@ def scene_row(scene, runs_b, runs_a, raw, cmp_rows) -> dict:
                 same=_same(cmp_rows) if cmp_rows else "", compare=cmp_rows)
 
 
-def print_table(rows) -> None:
-    print(f"{'scene':16s} {'before s':>8s} {'after s':>8s} {'speed-up':>8s} {'raw s':>7s} "
-          f"{'x raw':>6s} {'rays':>15s} {'casts':>12s} {'motions':>10s} {'peak MiB':>13s}  same")
+def _ratio(t, ref) -> str:
+    return f"{t / ref:.1f}" if t is not None and ref else "-"
+
+
+def print_table(rows, commits) -> None:
+    """The table: seconds per slice, ratios to raw Embree, counts, memory, results."""
+    print(f"before = {commits[0]}, after = {commits[1]}; CPU s per slice; x large: sensing / "
+          f"embreex on the same rays in calls of 65,536; x cast: / embreex in the casts as "
+          f"issued")
+    print(f"{'scene':16s} {'before s':>8s} {'after s':>8s} {'speed-up':>8s} "
+          f"{'x large':>10s} {'x cast':>9s} {'rays':>15s} {'casts':>12s} {'motions':>10s} "
+          f"{'peak MiB':>13s}  same")
     for r in rows:
         b = f"{r['before']:8.3f}" if r["before"] is not None else f"{'-':>8s}"
         sp = f"{r['speedup']:7.1f}x" if r["speedup"] else f"{'-':>8s}"
+        large = _ratio(r["after"], r["large"])
+        if r["large_before"]:
+            large = f"{_ratio(r['before'], r['large_before'])}->{large}"
+        cast = _ratio(r["after"], r["raw"])
+        if r["raw_before"]:
+            cast = f"{_ratio(r['before'], r['raw_before'])}->{cast}"
         rays = _fmt_counts(r["rays_before"] or r["rays"], r["rays"])
         casts = _fmt_counts(r["casts_before"] or r["casts"], r["casts"])
         mot = _fmt_counts(r["motions_before"] or r["motions"], r["motions"])
-        print(f"{r['scene']:16s} {b} {r['after']:8.3f} {sp} {r['raw']:7.3f} "
-              f"{r['after'] / r['raw']:6.1f} {rays:>15s} {casts:>12s} {mot:>10s} "
-              f"{r['peak']:6.0f} ({r['base']:4.0f})  {r['same']}")
+        print(f"{r['scene']:16s} {b} {r['after']:8.3f} {sp} {large:>10s} {cast:>9s} "
+              f"{rays:>15s} {casts:>12s} {mot:>10s} {r['peak']:6.0f} ({r['base']:4.0f})  "
+              f"{r['same']}")
     sp = [r["speedup"] for r in rows if r["speedup"]]
-    xr = [r["after"] / r["raw"] for r in rows]
+    xl = [r["after"] / r["large"] for r in rows if r["large"]]
+    xr = [r["after"] / r["raw"] for r in rows if r["raw"]]
     if sp:
         print(f"median speed-up {statistics.median(sp):.1f}x (min {min(sp):.1f}x); ", end="")
-    print(f"after / raw embreex: median {statistics.median(xr):.1f}, max {max(xr):.1f}")
+    if xl:
+        print(f"after / embreex large calls: median {statistics.median(xl):.1f}, "
+              f"max {max(xl):.1f}; after / embreex as cast: median "
+              f"{statistics.median(xr):.1f}, max {max(xr):.1f}")
+
+
+def _commit(rev: str) -> str:
+    """Short hash of ``rev``."""
+    short = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", rev], check=True,
+                           capture_output=True, text=True).stdout.strip()
+    return short
+
+
+def _this_checkout() -> str:
+    """Short hash of this checkout, ``+dirty`` with uncommitted changes to the code."""
+    dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--",
+                            "core2d", "slicer", "meshes", "bench"], check=True,
+                           capture_output=True, text=True).stdout.strip()
+    return _commit("HEAD") + ("+dirty" if dirty else "")
 
 
 def tol_table(tmp, scene, slices, shares) -> list[dict]:
@@ -196,6 +241,8 @@ def main(argv=None) -> int:
     p.add_argument("--reference", help="commit whose results must be reproduced "
                    "(default: --before)")
     p.add_argument("--no-before", dest="with_before", action="store_false")
+    p.add_argument("--raw-before", action="store_true",
+                   help="replay the --before commit's rays on raw embreex too")
     p.add_argument("--tols", help="tol / eps shares for the memory table, e.g. 0.05,0.005")
     p.add_argument("--tol-scene", default="deep_slot", help="scene of the memory table")
     p.add_argument("--json", help="write the rows to this file")
@@ -218,21 +265,24 @@ def main(argv=None) -> int:
             runs_b, runs_a = [], []
             for k in range(args.repeat):
                 if old is not None:
-                    runs_b.append(sense(old, scene, args.slices, tmp / "b.json"))
+                    runs_b.append(sense(old, scene, args.slices, tmp / "b.json",
+                                        raw=k == 0 and args.raw_before))
                 runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0))
             cmp_rows = []
             if runs_b:
                 doc_ref = runs_b[0] if ref is old else sense(ref, scene, args.slices,
                                                              tmp / "r.json")
                 cmp_rows = compare(scene, doc_ref, runs_a[0], args.slices)
-            rows.append(scene_row(scene, runs_b, runs_a, runs_a[0], cmp_rows))
+            rows.append(scene_row(scene, runs_b, runs_a, cmp_rows))
             print(f"  {scene}: done", file=sys.stderr, flush=True)
-        print_table(rows)
+        commits = (_commit(args.before) if args.with_before else "-", _this_checkout())
+        print_table(rows, commits)
         if args.tols:
             tols = tol_table(tmp, args.tol_scene, args.slices,
                              [float(x) for x in args.tols.split(",")])
     if args.json:
-        Path(args.json).write_text(json.dumps({"scenes": rows, "tols": tols}, indent=1))
+        Path(args.json).write_text(json.dumps({"scenes": rows, "tols": tols,
+                                               "commits": commits}, indent=1))
     return 0
 
 

@@ -99,8 +99,18 @@ def run_case(src: Path, source: str, flags: list[str], dest: Path, jobs: int) ->
     return time.perf_counter() - t0, err
 
 
-def _canonical(path: Path) -> str:
-    return json.dumps(without_timing(json.loads(path.read_text())), sort_keys=True)
+def _canonical(path: Path, ignore=()) -> str:
+    return json.dumps(_without(without_timing(json.loads(path.read_text())), set(ignore)),
+                      sort_keys=True)
+
+
+def _without(doc, keys):
+    """``doc`` without the keys ``keys`` at any depth."""
+    if isinstance(doc, dict):
+        return {k: _without(v, keys) for k, v in doc.items() if k not in keys}
+    if isinstance(doc, list):
+        return [_without(v, keys) for v in doc]
+    return doc
 
 
 def first_difference(a, b, where: str = "") -> str:
@@ -126,10 +136,11 @@ def first_difference(a, b, where: str = "") -> str:
     return "" if a == b else (where or "/")
 
 
-def compare(dir_a: Path, dir_b: Path) -> str:
-    """'identical' or the first difference of the two runs' documents."""
+def compare(dir_a: Path, dir_b: Path, ignore=()) -> str:
+    """'identical' or the first difference of the two runs' documents (keys
+    ``ignore`` aside)."""
     for name in ("sensing.json", "metrics.json"):
-        ta, tb = _canonical(dir_a / name), _canonical(dir_b / name)
+        ta, tb = _canonical(dir_a / name, ignore), _canonical(dir_b / name, ignore)
         if ta != tb:
             return f"{name} differs at {first_difference(json.loads(ta), json.loads(tb))}"
     return "identical"
@@ -144,7 +155,11 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=2, help="--jobs of every run (default 2)")
     ap.add_argument("--out", default=str(ROOT / "out" / "compare"),
                     help="work directory (default out/compare)")
+    ap.add_argument("--ignore", default="",
+                    help="comma-separated keys left out of the comparison at any depth, "
+                         "e.g. rays (a change that casts fewer rays for the same results)")
     args = ap.parse_args(argv)
+    ignore = [k for k in args.ignore.split(",") if k]
     out = Path(args.out)
     trees = [export(c, out) for c in (args.before, args.after)]
     todo = cases(args.cases)
@@ -162,11 +177,12 @@ def main(argv=None) -> int:
         if any(errors):
             verdict = "FAILED: " + " | ".join(f"{t[0]}: {e}" for t, e in zip(trees, errors) if e)
         else:
-            verdict = compare(*dirs)
+            verdict = compare(*dirs, ignore)
         bad += verdict != "identical"
         print(f"{name:28s} {walls[0]:9.1f} {walls[1]:9.1f}  {verdict}", flush=True)
+    aside = "".join(f", {k}" for k in ignore)
     print(f"{len(todo) - bad} of {len(todo)} cases identical (sensing.json and metrics.json, "
-          "timing fields aside)")
+          f"timing fields{aside} aside)")
     return 1 if bad else 0
 
 

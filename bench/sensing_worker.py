@@ -14,12 +14,14 @@ Compiled code is loaded before timing (a short sensing run on the first
 slice, 200 motions). Per slice it writes to ``OUT`` (JSON): CPU seconds of ``sense_slice``
 (``time.process_time``: the machine is shared), motions, rays, casts, the
 W1 / W2 / W3 / unknown geometry, and the process's peak resident memory
-after sensing. With ``--raw`` it senses every slice a second time through a
-recorder that keeps the ray batches of each call as issued and replays them
-on the same embreex scene (``scene.run(..., query='INTERSECT')``, the call
-the contact model makes, on float32 buffers made beforehand): the time
-Embree alone needs for the same rays in the same calls. Batches are kept
-up to ``_FLUSH`` rays and replayed then, so the recorder's memory is bounded.
+after sensing. With ``--raw`` it senses every slice a second time with the
+contact model's ray function wrapped in a ray log (:mod:`bench.ray_log`:
+every ray the compiled engine casts, cast by cast) and replays those rays on
+the same embreex scene (``scene.run(..., query='INTERSECT')``, the call the
+contact model makes, on float32 buffers made beforehand): the time Embree
+alone needs for the same rays in the same casts (``raw_seconds``), and in
+calls of 65,536 rays (``large_seconds``, Embree's throughput). The log is
+replayed every ``_FLUSH`` rays, so its memory is bounded.
 """
 from __future__ import annotations
 
@@ -28,39 +30,151 @@ import logging
 import resource
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 _FLUSH = 200_000
+_LARGE = 65_536
 
 
-class _Recorder:
-    """A contact model that passes calls on and times their raw Embree replay."""
+class _Replay:
+    """The rays of one sensing run, replayed on the slice's embreex scene
+    (``scene.run(o, d, query='INTERSECT')`` on float32 buffers made
+    beforehand): ``as_cast`` -- in the casts as issued, one call per cast;
+    ``large`` -- all in calls of ``_LARGE`` rays (Embree's throughput)."""
 
-    def __init__(self, inner):
-        self.inner, self.scene = inner, inner.scene
-        self.pending, self.rays, self.raw = [], 0, 0.0
+    def __init__(self, scene):
+        self.scene, self.as_cast, self.large, self.rays, self.casts = scene, 0.0, 0.0, 0, 0
+        self.tail = np.zeros((0, 2, 3), np.float32)  # rays waiting for a large call
+
+    def add(self, rays, cast_ids) -> None:
+        """Replay ``rays`` (n, 4: ox, oy, dx, dy), cast by cast (``cast_ids`` (n,),
+        non-decreasing) and in large calls."""
+        n = len(rays)
+        if n == 0 or self.scene is None:
+            return
+        od = np.zeros((n, 2, 3), np.float32)
+        od[:, 0, :2], od[:, 1, :2] = rays[:, :2], rays[:, 2:]
+        cuts = np.flatnonzero(np.diff(cast_ids)) + 1
+        batches = [(np.ascontiguousarray(b[:, 0]), np.ascontiguousarray(b[:, 1]))
+                   for b in np.split(od, cuts)]
+        run = self.scene.run
+        t0 = time.process_time()
+        for o3, d3 in batches:
+            run(o3, d3, query="INTERSECT")
+        self.as_cast += time.process_time() - t0
+        self.rays, self.casts = self.rays + n, self.casts + len(batches)
+        self.tail = np.concatenate((self.tail, od))
+        self._large(final=False)
+
+    def _large(self, final) -> None:
+        k = len(self.tail) if final else len(self.tail) // _LARGE * _LARGE
+        if k == 0:
+            return
+        chunks = [(np.ascontiguousarray(self.tail[i:i + _LARGE, 0]),
+                   np.ascontiguousarray(self.tail[i:i + _LARGE, 1])) for i in range(0, k, _LARGE)]
+        run = self.scene.run
+        t0 = time.process_time()
+        for o3, d3 in chunks:
+            run(o3, d3, query="INTERSECT")
+        self.large += time.process_time() - t0
+        self.tail = self.tail[k:]
+
+    def finish(self) -> None:
+        if self.scene is not None:
+            self._large(final=True)
+
+
+class _Logged:
+    """The contact model with its ray function wrapped in a ray log
+    (:class:`bench.ray_log.RayLog`); batched calls are logged as casts too."""
+
+    def __init__(self, inner, log, replay):
+        self.inner, self.log, self.replay = inner, log, replay
+        self.ray_kernel = log.ray_kernel
+
+    def __getattr__(self, name):
+        return getattr(self.inner, name)
 
     def cast(self, origins, dirs, max_dist):
         o = np.asarray(origins, dtype=np.float64).reshape(-1, 2)
         d = np.asarray(dirs, dtype=np.float64).reshape(-1, 2)
-        o3 = np.zeros((len(o), 3), np.float32)
-        d3 = np.zeros((len(d), 3), np.float32)
-        o3[:, :2], d3[:, :2] = o, d
-        self.pending.append((o3, d3))
-        self.rays += len(o)
-        if self.rays >= _FLUSH:
-            self.flush()
+        self.flush()
+        self.replay.add(np.hstack((o, d)), np.zeros(len(o), np.int64))
         return self.inner.cast(origins, dirs, max_dist)
 
+    def fan(self, origin, angles, max_dist):
+        angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+        dirs = np.stack((np.cos(angles), np.sin(angles)), 1)
+        self.flush()
+        self.replay.add(np.hstack((np.tile(origin, (len(angles), 1)), dirs)),
+                        np.zeros(len(angles), np.int64))
+        return self.inner.fan(origin, angles, max_dist)
+
     def flush(self) -> None:
-        if self.scene is not None and self.pending:
-            run, batches = self.scene.run, self.pending
-            t0 = time.process_time()
-            for o3, d3 in batches:
-                run(o3, d3, query="INTERSECT")
-            self.raw += time.process_time() - t0
-        self.pending, self.rays = [], 0
+        """Replay what the ray log holds."""
+        rays, ids = self.log.take()
+        self.replay.add(rays, ids)
+
+
+def _logged_engine(base):
+    """``base`` (the compiled engine class) marking a new cast in the ray log
+    before every call into compiled code, and replaying the log now and then."""
+
+    class Logged(base):
+        def _mark(self, counter):
+            log = self.contact.log
+            log.new_cast(counter)
+            if log.head[3] >= _FLUSH:
+                self.contact.flush()
+                log.new_cast(counter)
+
+        def _run(self, kernel, *args):
+            self._mark(self._count)
+            return super()._run(kernel, *args)
+
+        def cast(self, origins, dirs, max_dist):
+            self._mark(None)
+            return super().cast(origins, dirs, max_dist)
+
+        def sense_rays(self, *args):
+            self._mark(None)
+            return super().sense_rays(*args)
+
+    return Logged
+
+
+def _raw(core2d, cut, eps, tol) -> dict:
+    """Sense ``cut`` again through a ray log and replay its rays on raw embreex."""
+    import importlib.util
+
+    import core2d.sim.engine as engine_module
+
+    # this worker's ray log (the checkout under test may have none, or an older one)
+    spec = importlib.util.spec_from_file_location("_ray_log", Path(__file__).with_name(
+        "ray_log.py"))
+    ray_log = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ray_log)
+    RayLog = ray_log.RayLog
+
+    contact = cut.contact("embree")
+    replay = _Replay(contact.scene)
+    logged = _Logged(contact, RayLog(contact.ray_kernel), replay)
+    compiled = engine_module.CompiledEngine
+    engine_module.CompiledEngine = _logged_engine(compiled)
+    try:
+        center, radius = cut.bounding_circle()
+        res = core2d.sense_slice(logged, (center, radius + eps), eps, tol=tol)
+    finally:
+        engine_module.CompiledEngine = compiled
+    logged.flush()
+    replay.finish()
+    if (replay.rays, replay.casts) != (res.stats.rays, res.stats.casts):
+        raise RuntimeError(f"replayed {replay.rays} rays in {replay.casts} casts, sensing "
+                           f"cast {res.stats.rays} in {res.stats.casts}")
+    return dict(raw_seconds=replay.as_cast, large_seconds=replay.large,
+                replayed_rays=replay.rays, replayed_casts=replay.casts)
 
 
 def _geometry(result) -> dict:
@@ -122,16 +236,10 @@ def main(argv) -> int:
                          geometry=_geometry(res)))
     doc = dict(scene=scene, slices=rows, peak_mib=_peak_mib(), base_mib=base)
     if raw:
-        total = 0.0
         for cut, row in zip(cuts, rows):
-            center, radius = cut.bounding_circle()
-            rec = _Recorder(cut.contact("embree"))
-            res = core2d.sense_slice(rec, (center, radius + eps), eps, tol=tol)
-            rec.flush()
-            row["raw_seconds"] = rec.raw
-            row["replayed_rays"] = res.stats.rays
-            total += rec.raw
-        doc["raw_seconds"] = total
+            row.update(_raw(core2d, cut, eps, tol))
+        doc["raw_seconds"] = sum(r["raw_seconds"] for r in rows)
+        doc["large_seconds"] = sum(r["large_seconds"] for r in rows)
     with open(out, "w") as fh:
         json.dump(doc, fh)
     return 0

@@ -124,9 +124,9 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
     if inner.all() and len(a):
         tx, ty = np.ascontiguousarray(tg[:, 0]), np.ascontiguousarray(tg[:, 1])
-        atol, none = float(atol), np.zeros((0, 2))
+        atol = float(atol)
         own = np.full(c, -1, np.int64) if own is None else np.ascontiguousarray(own)
-        k = _kept_pairs(p, tx, ty, a, b, atol, own, np.zeros(0, np.int64), none, none)
+        k = c * len(a)  # at most ``chunk`` pairs: room for all, one pass
         row, y, x = np.empty(k, np.int64), np.empty((k, 2)), np.empty((k, 2))
         k = _kept_pairs(p, tx, ty, a, b, atol, own, row, y, x)
         width, psi = np.empty(c), np.empty(c)
@@ -205,12 +205,10 @@ def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: n
     as the vectorised path does (same float64 operations), in its order;
     segment ``own[r]`` of point r (-1: none) is ignored.
 
-    With empty outputs it only counts the pairs the half-plane test keeps
-    (an upper bound); otherwise it writes the row of each pair and the
-    ``arctan2`` arguments of both segment ends (``out_y``, ``out_x`` :
-    (k, 2)). Returns the number of pairs.
+    It writes the row of each pair and the ``arctan2`` arguments of both
+    segment ends (``out_y``, ``out_x`` : (k, 2), room for every pair).
+    Returns the number of pairs.
     """
-    fill = out_row.shape[0] > 0
     m = 0
     far2, near2 = (atol * (1 + 1e-9)) ** 2, (atol * (1 - 1e-9)) ** 2
     for r in range(p.shape[0]):
@@ -222,9 +220,6 @@ def _kept_pairs(p, tx, ty, a, b, atol, own, out_row, out_y, out_x):  # pragma: n
                 continue
             ax, ay, bx, by = a[j, 0], a[j, 1], b[j, 0], b[j, 1]
             if not (txr * ay - tyr * ax - k < 0 or txr * by - tyr * bx - k < 0):
-                continue
-            if not fill:
-                m += 1
                 continue
             vax, vay, vbx, vby = ax - px, ay - py, bx - px, by - py
             ex, ey = vbx - vax, vby - vay

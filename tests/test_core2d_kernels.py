@@ -1,11 +1,12 @@
 """The compiled contact resolution (core2d.sim.kernels) against the Python path.
 
 The kernels replace the Python searches of the simulator for a contact model
-with a ray function (the Embree backend). They must cast the same rays,
-resolve the same contacts and count the same casts: every test here runs
-the same scene twice, once through the kernels and once through a wrapper
-that hides the ray function (the Python path, ``cast`` and ``fan`` only),
-and compares everything the run produces.
+with a ray function (the Embree backend). They must resolve the same contacts
+and count the same casts, casting the Python path's rays up to the first hit
+of each window (the rest is never used): every test here runs the same scene
+twice, once through the kernels and once through a wrapper that hides the ray
+function (the Python path, ``cast`` and ``fan`` only), and compares everything
+the run produces; the kernels' rays are fewer.
 """
 import numpy as np
 import pytest
@@ -58,9 +59,10 @@ def test_kernels_sense_exactly_as_the_python_path(name, index):
     fast = sense_slice(contact, ws, eps)
     slow = sense_slice(_PythonPath(contact), ws, eps)
     assert _geometry(fast) == _geometry(slow)
-    for key in ("motions", "rays", "casts", "pushes", "push_attempts", "joint_path"):
+    for key in ("motions", "casts", "pushes", "push_attempts", "joint_path"):
         assert getattr(fast.stats, key) == getattr(slow.stats, key), key
     assert fast.stats.motions > 100 and fast.stats.rays > 10_000
+    assert fast.stats.rays < 0.9 * slow.stats.rays  # windows stop at their first hit
     _same_log(fast.motions, slow.motions)  # the motion log records both engines alike
 
 
@@ -187,7 +189,68 @@ def test_kernels_meet_each_trace_event_as_the_python_path(case):
         got.append((cases, [np.asarray(pl).tolist() for pl in lines],
                     [(k.rule, k.a.tolist(), k.b.tolist()) for k in new],
                     probe.joint.tolist(), float(probe.theta),
-                    {k: getattr(probe.stats, k) for k in ("motions", "rays", "casts",
-                                                          "push_attempts", "joint_path")}))
+                    {k: getattr(probe.stats, k) for k in ("motions", "casts",
+                                                          "push_attempts", "joint_path")},
+                    probe.stats.rays))
     assert case in got[0][0]  # the event under test is met
-    assert got[0] == got[1]
+    assert got[0][:-1] == got[1][:-1]
+    assert got[0][-1] < got[1][-1]  # fewer rays: the windows stop at their first hit
+
+
+class _Wall:
+    """A synthetic scene: a ray from the joint is blocked (at distance 1) when
+    its direction angle is at least ``phi``. It serves both engines: a
+    batched ``cast`` for the Python one, a C ray function (ctypes) for the
+    kernels; both log the angle of every ray, cast by cast."""
+
+    def __init__(self, phi):
+        import ctypes
+
+        self.phi, self.casts, self.log = phi, [], []
+        proto = ctypes.CFUNCTYPE(None, ctypes.c_void_p, *[ctypes.c_double] * 5,
+                                 ctypes.POINTER(ctypes.c_double))
+
+        def ray(ctx, ox, oy, dx, dy, max_dist, out):
+            a = float(np.arctan2(dy, dx))
+            self.log.append(a)
+            hit = a >= self.phi
+            out[0], out[1], out[2] = (1.0, ox + dx, oy + dy) if hit else (np.inf, np.nan, np.nan)
+
+        self._fn = proto(ray)  # kept alive with this object
+        self.ray_kernel = (ctypes.cast(self._fn, ctypes.c_void_p).value, np.zeros(1))
+
+    def cast(self, origins, dirs, max_dist):
+        a = np.arctan2(dirs[:, 1], dirs[:, 0])
+        self.casts.append(a)
+        hit = a >= self.phi
+        return (np.where(hit, 1.0, np.inf), np.where(hit[:, None], origins + dirs, np.nan),
+                None)
+
+
+@pytest.mark.parametrize("want_blocked", [True, False])
+def test_search_windows_stop_at_their_first_hit(want_blocked):
+    """The compiled search casts each of the Python search's fans (windows,
+    then the bisection's fans) up to its first ray where the state changes,
+    and nothing else: same answer, same casts, ray by ray the prefixes."""
+    from core2d.resolution import Resolution
+    from core2d.result import SenseStats
+
+    res, length = Resolution.of(0.05), 1.0
+    rot = 1 if want_blocked else -1  # from free towards the wall, or from inside it out
+    theta0 = 0.0 if want_blocked else 1.0
+    wall = _Wall(0.437)
+    slow = PythonEngine(wall, SenseStats(), length, res).search(
+        np.zeros(2), theta0, rot, 2.0, want_blocked)
+    fast_engine = CompiledEngine(wall, SenseStats(), length, res, wall.ray_kernel)
+    fast = fast_engine.search(np.zeros(2), theta0, rot, 2.0, want_blocked)
+    assert slow is not None and fast[0] == slow[0]
+    np.testing.assert_array_equal(fast[1][1], slow[1][1])
+    want = []
+    for fan in wall.casts:
+        state = fan >= wall.phi if want_blocked else fan < wall.phi
+        k = int(np.argmax(state)) + 1 if state.any() else len(fan)
+        want.extend(fan[:k])
+    assert len(wall.casts) > 3 and fast_engine.stats.casts == len(wall.casts)
+    assert fast_engine.stats.rays == len(wall.log) == len(want)
+    assert len(want) < sum(map(len, wall.casts))  # some fan was cut short
+    np.testing.assert_allclose(wall.log, want, rtol=0, atol=1e-12)

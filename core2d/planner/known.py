@@ -339,15 +339,20 @@ def _cross2(x, y):
 def _param(p, a, b) -> np.ndarray:
     """(n,) position of the projection of p on each segment a -> b, in [0, 1]."""
     out = np.empty(len(a))
-    _project(np.asarray(p, np.float64), a, b, out, np.empty(0))
+    _project(np.asarray(p, np.float64), _c(a), _c(b), out, np.empty(0))
     return out
 
 
 def _point_segments(p, a, b) -> np.ndarray:
     """(n,) distances from point p to segments a -> b."""
     out = np.empty(len(a))
-    _project(np.asarray(p, np.float64), a, b, np.empty(len(a)), out)
+    _project(np.asarray(p, np.float64), _c(a), _c(b), np.empty(len(a)), out)
     return out
+
+
+def _c(x) -> np.ndarray:
+    """``x`` as a C-contiguous float64 array (one compiled signature of :func:`_project`)."""
+    return np.ascontiguousarray(x, dtype=np.float64)
 
 
 @numba.njit(cache=True, nogil=True)

@@ -3,9 +3,9 @@
 :class:`CompiledEngine` runs the searches, the settles of a compliant trace
 and a reading's rays in compiled code (:mod:`core2d.sim.kernels`), calling
 the contact model's ray function (``ray_kernel``, the Embree backend) ray
-by ray: the same rays, the same answers and the same counts as
-:class:`~core2d.sim.search.PythonEngine`, without the Python between the
-rays. It shares the Python engine's ray plan (the offset windows, the settle
+by ray: the rays of :class:`~core2d.sim.search.PythonEngine` up to the
+first hit of each window, the same answers and the same casts, without the
+Python between the rays. It shares the Python engine's ray plan (the offset windows, the settle
 batch) and overrides every operation that casts.
 """
 from __future__ import annotations
@@ -17,14 +17,12 @@ import numpy as np
 from core2d.resolution import Resolution
 from core2d.result import SenseStats
 from core2d.sim import kernels
+from core2d.sim.codes import REFINE as _REFINE
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.compliance import settle_plan
 from core2d.sim.search import PythonEngine
 
 __all__ = ["CompiledEngine"]
-
-_NO_FIRST = np.zeros((3, 0))
-
 
 class CompiledEngine(PythonEngine):
     """The simulator's ray engine in compiled code (see :class:`core2d.sim.engine.Engine`).
@@ -40,7 +38,7 @@ class CompiledEngine(PythonEngine):
         self._context = ray_kernel[1]  # keeps the context alive
         self._ray = (int(ray_kernel[0]), int(ray_kernel[1].ctypes.data))
         self._par = np.array((self.length, self.ang_tol, self.fan_step, self.tip_zone,
-                              _WINDOWS[-1]))
+                              _WINDOWS[-1], _REFINE))
         self._work = np.empty((5, _WINDOWS[-1]))
         self._count = np.zeros(5, dtype=np.int64)
 
@@ -77,11 +75,11 @@ class CompiledEngine(PythonEngine):
         return out[:, 0], out[:, 1:]
 
     def search(self, joint, theta0, rot_dir, max_angle, want_blocked=True, first=None):
-        if first is not None:  # (dist, point) of the first window -> (3, m)
-            first = np.vstack((first[0], np.asarray(first[1]).T))
+        if first is not None:  # a window cast by the caller (the Python settle's batch)
+            return super().search(joint, theta0, rot_dir, max_angle, want_blocked, first)
         found, angle, d, x, y = self._run(
             kernels.search, float(joint[0]), float(joint[1]), float(theta0), float(rot_dir),
-            float(max_angle), want_blocked, _NO_FIRST if first is None else first)
+            float(max_angle), bool(want_blocked))
         return (angle, (d, np.array((x, y)))) if found else None
 
     def search_from(self, origin, theta0, rot_dir, max_angle):

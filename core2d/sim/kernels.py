@@ -14,7 +14,7 @@ calling a contact model's *ray function* once per ray. They are driven by
 the named ones of :mod:`core2d.sim.codes`, shared with the Python engine.
 
 Arrays the searches share: ``par = (L, ang_tol, fan_step, tip_zone, window
-cap)``; ``work`` (5, cap) float scratch; ``count`` (5,) int64 -- casts,
+cap, REFINE)``; ``work`` (5, cap) float scratch; ``count`` (5,) int64 -- casts,
 rays, pushes, push attempts, jams -- incremented in place.
 
 A ray function is any C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)``
@@ -23,10 +23,15 @@ as the pair ``(address, ctx)`` by a contact model's ``ray_kernel`` (the
 Embree backend has one: :mod:`slicer.contact.embree_direct`). core2d never learns
 what is behind it: the same contract as ``cast``, one ray at a time.
 
-The kernels cast the very rays of the Python path, window by window, and
-count casts and rays as it does, so results, counters and ray batches (the
-benchmark replays them on raw Embree) are identical;
-``tests/test_core2d_kernels.py`` checks it scene by scene.
+The kernels cast the rays of the Python path, window by window, in the same
+order, but stop each window at its first ray where the probe's state changes:
+the Python engine casts a whole window in one call (a call costs more than
+rays), and only that first ray and the ones before it are ever used. So
+results, the motion log and the casts are identical, and the kernels cast
+fewer rays: a prefix of each window, and of a settle's batch the ray at
+theta and the one window it calls for. ``tests/test_core2d_kernels.py``
+checks it scene by scene; the benchmark replays the rays the kernels cast
+(:mod:`bench.sensing_worker`).
 """
 from __future__ import annotations
 
@@ -38,14 +43,13 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from core2d.sim.codes import REFINE as _REFINE
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.codes import Settle, TraceEvent
 from core2d.sim.friction import self_locked
 
 _self_locked = numba.njit(cache=True, nogil=True)(self_locked)  # the Python engine's test
 
-__all__ = ["cast", "fan", "sense_rays", "search", "search_from", "settle", "trace_steps"]
+__all__ = ["cast", "sense_rays", "search", "search_from", "settle", "trace_steps"]
 
 
 @intrinsic
@@ -63,16 +67,6 @@ def _call(typingctx, fn, ctx, ox, oy, dx, dy, md, out):
         return context.get_dummy_value()
 
     return sig, codegen
-
-
-@numba.njit(cache=True, nogil=True)
-def fan(fn, ctx, jx, jy, angles, n, max_dist, d, px, py):  # pragma: no cover - compiled
-    """Rays from ``(jx, jy)`` at ``angles[:n]`` into ``d, px, py`` (one cast)."""
-    out = np.empty(3)
-    addr = out.ctypes.data
-    for i in range(n):
-        _call(fn, ctx, jx, jy, np.cos(angles[i]), np.sin(angles[i]), max_dist, addr)
-        d[i], px[i], py[i] = out[0], out[1], out[2]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -108,54 +102,60 @@ def search_from(fn, ctx, ox, oy, theta0, rot_dir, max_angle, n, tol, par, work, 
     # pragma: no cover - compiled
     """``PythonEngine.search_from``: the first of ``n`` rays from ``(ox, oy)``
     (offset by ``tol`` along each ray) at ``theta0 + rot_dir k step``
-    (k = 1 .. n, clipped to ``max_angle``) that hits, cast window by window
-    (``cap`` rays, one cast each); its offset ``k step`` (k from 0), or -1.
+    (k = 1 .. n, clipped to ``max_angle``) that hits, in the windows of the
+    Python engine (``cap`` rays, one cast each), each cast up to its first
+    hit; its offset ``k step`` (k from 0), or -1.
     ``work`` is not used (the common signature); ``count[:2]`` is incremented."""
     L, step, cap = par[0], par[2], int(par[4])
     res = np.empty(3)
     addr = res.ctypes.data
     for lo in range(0, n, cap):
         hi = min(n, lo + cap)
-        first = -1
+        count[0] += 1
         for k in range(lo + 1, hi + 1):
             a = theta0 + rot_dir * min(k * step, max_angle)
             c, s = np.cos(a), np.sin(a)
             _call(fn, ctx, ox + tol * c, oy + tol * s, c, s, L, addr)
-            if first < 0 and res[0] < np.inf:
-                first = k - 1
-        count[0] += 1
-        count[1] += hi - lo
-        if first >= 0:
-            return first * step
+            count[1] += 1
+            if res[0] < np.inf:
+                return (k - 1) * step
     return -1.0
 
 
 @numba.njit(cache=True, nogil=True)
-def _first(d, n, want_blocked):  # pragma: no cover - compiled
-    """Index of the first blocked (finite) or free (inf) ray of ``d[:n]``, or -1."""
+def _scan(fn, ctx, jx, jy, angles, n, max_dist, want_blocked, d, px, py):
+    # pragma: no cover - compiled
+    """Rays from ``(jx, jy)`` at ``angles[:n]`` into ``d, px, py``, in order,
+    up to the first blocked (finite) or free (inf) one as ``want_blocked``:
+    its index (the rays cast: index + 1), or -1 (all ``n`` cast)."""
+    out = np.empty(3)
+    addr = out.ctypes.data
     for i in range(n):
-        if (d[i] < np.inf) == want_blocked:
+        _call(fn, ctx, jx, jy, np.cos(angles[i]), np.sin(angles[i]), max_dist, addr)
+        d[i], px[i], py[i] = out[0], out[1], out[2]
+        if (out[0] < np.inf) == want_blocked:
             return i
     return -1
 
 
 @numba.njit(cache=True, nogil=True)
-def _refine(fn, ctx, jx, jy, a_before, a_after, hit, want_blocked, par, work, count):
+def _refine(fn, ctx, jx, jy, a_before, a_after, hd, hx, hy, want_blocked, par, work, count):
     # pragma: no cover - compiled
-    """``PythonEngine._refine``: shrink [a_before, a_after] to ang_tol; returns the
-    resolved angle and the blocked side's ``(d, x, y)``."""
-    L, ang_tol = par[0], par[1]
+    """``PythonEngine._refine``: shrink [a_before, a_after] to ang_tol, fans of
+    ``REFINE`` rays each cast up to its first ray past the bracket's change;
+    ``(hd, hx, hy)`` is the hit at ``a_after``. Returns the resolved angle
+    and the blocked side's ``(d, x, y)``."""
+    L, ang_tol, nref = par[0], par[1], int(par[5])
     ang, d, px, py = work[0], work[1], work[2], work[3]
     have = want_blocked
-    bd, bx, by = hit if want_blocked else (np.inf, np.nan, np.nan)
+    bd, bx, by = (hd, hx, hy) if want_blocked else (np.inf, np.nan, np.nan)
     while abs(a_after - a_before) > ang_tol:
-        w = (a_after - a_before) / (_REFINE + 1)
-        for j in range(_REFINE):
+        w = (a_after - a_before) / (nref + 1)
+        for j in range(nref):
             ang[j] = (j + 1.0) * w + a_before
-        fan(fn, ctx, jx, jy, ang, _REFINE, L, d, px, py)
+        i = _scan(fn, ctx, jx, jy, ang, nref, L, want_blocked, d, px, py)
         count[0] += 1
-        count[1] += _REFINE
-        i = _first(d, _REFINE, want_blocked)
+        count[1] += nref if i < 0 else i + 1
         if i >= 0:
             a_after = ang[i]
             if i > 0:
@@ -165,17 +165,17 @@ def _refine(fn, ctx, jx, jy, a_before, a_after, hit, want_blocked, par, work, co
             elif i > 0:
                 bd, bx, by, have = d[i - 1], px[i - 1], py[i - 1], True
         else:
-            a_before = ang[_REFINE - 1]
+            a_before = ang[nref - 1]
             if not want_blocked:
-                bd, bx, by, have = d[_REFINE - 1], px[_REFINE - 1], py[_REFINE - 1], True
+                bd, bx, by, have = d[nref - 1], px[nref - 1], py[nref - 1], True
     if want_blocked:
         return a_before, bd, bx, by
     if not have:  # the blocked side is the start angle itself
-        ang[0] = a_before
-        fan(fn, ctx, jx, jy, ang, 1, L, d, px, py)
+        res = np.empty(3)
+        _call(fn, ctx, jx, jy, np.cos(a_before), np.sin(a_before), L, res.ctypes.data)
         count[0] += 1
         count[1] += 1
-        bd, bx, by = d[0], px[0], py[0]
+        bd, bx, by = res[0], res[1], res[2]
     return a_after, bd, bx, by
 
 
@@ -215,13 +215,13 @@ def _window(offs, st, max_angle, fan_step, cap):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True)
-def search(fn, ctx, jx, jy, theta0, rot_dir, max_angle, want_blocked, first, par, work,
-           count):  # pragma: no cover - compiled
+def search(fn, ctx, jx, jy, theta0, rot_dir, max_angle, want_blocked, par, work, count):
+    # pragma: no cover - compiled
     """``PythonEngine.search``: first angle from ``theta0`` towards ``rot_dir``
-    (+-1.0) where the probe becomes blocked (or free).
+    (+-1.0) where the probe becomes blocked (or free), in the windows of the
+    Python engine, each cast up to its first ray where the state changes (the
+    rays past it are never used).
 
-    first : (3, m) ``d, x, y`` of the first window when the caller cast it
-        already (m = 0 otherwise).
     par, work : see the module doc. count : (4,) int -- casts and rays
         (``count[:2]``) incremented.
 
@@ -231,31 +231,19 @@ def search(fn, ctx, jx, jy, theta0, rot_dir, max_angle, want_blocked, first, par
     ang, d, px, py, offs = work[0], work[1], work[2], work[3], work[4]
     st = np.array((0.0, 0.0, min(fan_step, 2 * par[1]), 0.0))
     prev = 0.0
-    if first.shape[1] > 0:  # the first window, cast already
-        n = _window(offs, st, max_angle, fan_step, cap)
-        i = _first(first[0], n, want_blocked)
-        if i >= 0:
-            lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
-            hit = (first[0, i], first[1, i], first[2, i])
-            a, bd, bx, by = _refine(fn, ctx, jx, jy, lo, theta0 + rot_dir * offs[i], hit,
-                                    want_blocked, par, work, count)
-            return True, a, bd, bx, by
-        prev = offs[n - 1]
     while True:
         n = _window(offs, st, max_angle, fan_step, cap)
         if n == 0:
             return False, 0.0, np.inf, np.nan, np.nan
         for j in range(n):
             ang[j] = theta0 + rot_dir * offs[j]
-        fan(fn, ctx, jx, jy, ang, n, L, d, px, py)
+        i = _scan(fn, ctx, jx, jy, ang, n, L, want_blocked, d, px, py)
         count[0] += 1
-        count[1] += n
-        i = _first(d, n, want_blocked)
+        count[1] += n if i < 0 else i + 1
         if i >= 0:
             lo = theta0 + rot_dir * (prev if i == 0 else offs[i - 1])
-            hit = (d[i], px[i], py[i])
-            a, bd, bx, by = _refine(fn, ctx, jx, jy, lo, ang[i], hit, want_blocked, par,
-                                    work, count)
+            a, bd, bx, by = _refine(fn, ctx, jx, jy, lo, ang[i], d[i], px[i], py[i],
+                                    want_blocked, par, work, count)
             return True, a, bd, bx, by
         prev = offs[n - 1]
 
@@ -266,30 +254,26 @@ def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
     """``compliance._settle``: the pose reached on the joint ``(jx, jy)`` from
     ``theta`` under the torque ``rot_dir`` (+-1.0).
 
-    plan : ``(offsets, n_along, max_along, max_back)``: the settle's first
-    batch (``[0, along window, -back window]``) and both searches' reach.
+    plan : ``(offsets, n_along, max_along, max_back)`` of
+    :func:`core2d.sim.compliance.settle_plan`; the reaches are used. One cast
+    as in the Python engine: the ray at ``theta``, then the first window of
+    the one search it calls for (along the torque when that ray is free,
+    against it when blocked) up to its first hit; the other window, which
+    the Python engine casts in the same batch, is not needed.
 
     Returns ``(status, theta, d, x, y)``, status a :class:`~core2d.sim.codes.Settle`.
     """
-    soffs, n_along, max_a, max_b = plan
-    n = len(soffs)
-    ang = np.empty(n)
-    batch = np.empty((3, n))
-    for j in range(n):
-        ang[j] = theta + rot_dir * soffs[j]
-    fan(fn, ctx, jx, jy, ang, n, par[0], batch[0], batch[1], batch[2])
-    count[0] += 1
-    count[1] += n
-    if batch[0, 0] == np.inf:
-        found, a, d, x, y = search(fn, ctx, jx, jy, theta, rot_dir, max_a, True,
-                                   batch[:, 1:1 + n_along].copy(), par, work, count)
-        if not found:
+    max_a, max_b = plan[2], plan[3]
+    res = np.empty(3)
+    _call(fn, ctx, jx, jy, math.cos(theta), math.sin(theta), par[0], res.ctypes.data)
+    count[1] += 1  # (cast with the search's first window, which counts the cast)
+    free = res[0] == np.inf  # swing with the torque to a contact, else yield against it
+    found, a, d, x, y = search(fn, ctx, jx, jy, theta, rot_dir if free else -rot_dir,
+                               max_a if free else max_b, free, par, work, count)
+    if not found:
+        if free:
             return Settle.LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
-    else:
-        found, a, d, x, y = search(fn, ctx, jx, jy, theta, -rot_dir, max_b, False,
-                                   batch[:, 1 + n_along:].copy(), par, work, count)
-        if not found:
-            return Settle.JAMMED, theta, np.inf, np.nan, np.nan
+        return Settle.JAMMED, theta, np.inf, np.nan, np.nan
     return Settle.OK, a, d, x, y
 
 

@@ -93,11 +93,13 @@ def _cut(name, index, count=4):
     return cut, (center, radius + eps), eps
 
 
-def _everything(res):
+def _everything(res, rays=True):
     out = {k: [np.asarray(a).tolist() for a in getattr(res, k)]
            for k in ("w1", "w2", "w3", "unknown")}
     st = res.stats.as_dict()
     st.pop("seconds")
+    if not rays:  # the compiled windows stop at their first hit: fewer rays, same casts
+        st.pop("rays")
     out["stats"] = st
     log = res.motions
     out["log"] = [np.asarray(getattr(log, k)).tolist() for k in ("kind", "event", "after")]
@@ -127,7 +129,7 @@ def test_both_engines_jam_alike(name, index):
     fast = sense_slice(contact, ws, eps, method="follow", friction=0.6)
     slow = sense_slice(_PythonPath(contact), ws, eps, method="follow", friction=0.6)
     assert fast.stats.jams > 0
-    assert _everything(fast) == _everything(slow)
+    assert _everything(fast, rays=False) == _everything(slow, rays=False)
 
 
 def test_friction_must_not_be_negative():

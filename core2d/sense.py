@@ -11,7 +11,7 @@ between the two logs every motion (``result.motions``).
 from __future__ import annotations
 
 from core2d.planner.finger import finger_probe
-from core2d.planner.flow import FLOWS
+from core2d.planner.flow import FLOWS, Flow
 from core2d.planner.run import explore
 from core2d.result import SliceResult
 from core2d.sim.contact import ContactModel
@@ -27,8 +27,8 @@ METHODS = ("pulling", "paper", "finger")
 def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: float | None = None,
                 tol: float | None = None, max_motions: int = 20000, max_areas: int = 4000,
                 bootstrap_count: int = 12, method: str = "pulling", directions: int = 32,
-                spacing: float | None = None, sensor: SensorModel | None = None
-                ) -> SliceResult:
+                spacing: float | None = None, sensor: SensorModel | None = None,
+                flow: Flow | None = None) -> SliceResult:
     """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
@@ -50,6 +50,9 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
         line spacing (default eps / 2).
     sensor : SensorModel, optional -- noise and taxels of the readings
         (:mod:`core2d.sim.sensor`); default the paper's perfect sensing.
+    flow : Flow, optional -- the planner's additions switched one by one
+        (:mod:`core2d.planner.flow`, ``bench.ablation``); overrides the flow
+        that ``method`` names.
 
     Returns
     -------
@@ -61,6 +64,7 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
     if method == "finger":
         result = finger_probe(probe, eps, directions, spacing, max_motions)
     else:
-        result = explore(probe, eps, max_motions, max_areas, bootstrap_count, FLOWS[method])
+        result = explore(probe, eps, max_motions, max_areas, bootstrap_count,
+                         flow or FLOWS[method])
     result.motions = probe.log()
     return result

@@ -8,9 +8,15 @@ escape of §4.4 -- are the same code in both methods. The default
 of :class:`Flow`:
 
 * ``map`` -- the robot's own map of what it recorded
-  (:class:`~core2d.planner.known.KnownContour`): an area whose C_A^B was
-  traced through other areas is closed as traced; a pass touching recorded
+  (:class:`~core2d.planner.known.KnownContour`): a pass touching recorded
   contour is a dead end;
+* ``covers`` -- with the map, an area whose C_A^B was traced through other
+  areas is closed as traced (:meth:`KnownContour.covers`);
+* ``escape`` -- §4.4's escape asked for over the whole ancestry: a new area
+  repeating the A and B of *any* ancestor, or the third generation in a row
+  that traced no new contour. Off, the escape is asked for as §4.4 words
+  it: the area repeats its parent's A and B (the same contact points found
+  again), or the bisection fails;
 * ``defer`` -- a dead end (no pass, a pass finding no new contact) is
   deferred instead of becoming W3 on the spot as §4.2.1 says;
 * ``w3_proof`` -- Area(G_i) = 0 gives W3 only when the map proves that no
@@ -39,20 +45,23 @@ class Flow:
     """The planner's additions to Fig. 16, each on (True) or off."""
 
     map: bool = True
+    covers: bool = True
+    escape: bool = True
     defer: bool = True
     w3_proof: bool = True
     revisit: bool = True
     audit: bool = True
 
     def __post_init__(self):
-        if (self.w3_proof or self.revisit or self.audit) and not self.map:
-            raise ValueError("w3_proof, revisit and audit need the map")
+        if (self.covers or self.w3_proof or self.revisit or self.audit) and not self.map:
+            raise ValueError("covers, w3_proof, revisit and audit need the map")
 
 
 PULLING = Flow()
 """The default: Fig. 16 with every addition."""
 
-PAPER = Flow(map=False, defer=False, w3_proof=False, revisit=False, audit=False)
+PAPER = Flow(map=False, covers=False, escape=False, defer=False, w3_proof=False,
+             revisit=False, audit=False)
 """The paper's Fig. 16 alone: dead ends and Area(G_i) = 0 are W3 (§4.2.1)."""
 
 FLOWS = {"pulling": PULLING, "paper": PAPER}

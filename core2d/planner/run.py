@@ -191,14 +191,17 @@ class Exploration:
     def children(self, area, kids, traced=0.0):
         """Register ``kids`` of ``area``; §4.4 over the whole ancestry: a kid
         repeating the A and B of any ancestor, or the STALE-th generation in
-        a row that traced less than eps of new contour, requests the escape."""
+        a row that traced less than eps of new contour, requests the escape.
+        Without ``flow.escape``, §4.4 as worded: a kid repeating its parent's
+        A and B (the same contact points found again)."""
         same = self.res.tip_zone  # contacts closer than eps/2 are one contact
         lineage = area.lineage + ((area.a, area.b),)
         stale = 0 if traced >= self.eps else area.stale + 1
+        asked = lineage if self.flow.escape else lineage[-1:]
         for kid in kids:
             kid.lineage, kid.stale = lineage, stale
-            if stale >= STALE or any(_same(kid.a, a, same) and _same(kid.b, b, same)
-                                     for a, b in lineage):
+            if (stale >= STALE and self.flow.escape) or any(
+                    _same(kid.a, a, same) and _same(kid.b, b, same) for a, b in asked):
                 kid.escape = True
             self.add(kid)
         self.close(area, "split" if kids else "traced")
@@ -208,7 +211,7 @@ class Exploration:
         if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
             return self.close(area, "W2", "Dist(A,B) < eps")
         same = self.res.tip_zone
-        if self.flow.map and self.known.covers(area.a, area.b, same):
+        if self.flow.covers and self.known.covers(area.a, area.b, same):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)

@@ -16,8 +16,9 @@ closure of an area whose C_A^B was traced through other areas); ``-defer``
 (deferral and revisits: a dead end is W3 at once, §4.2.1); ``-audit`` (no
 registration of loose ends); ``-escape`` (§4.4's escape on the parent's A
 and B only, not the whole ancestry nor stale generations); ``-w3_proof``
-(Area(G_i) = 0 is W3 without the map's proof); ``paper``. Nothing is
-asserted: it measures.
+(Area(G_i) = 0 is W3 without the map's proof); ``paper``. ``--decisions``
+adds the paper's own decisions changed one at a time, under both flows
+(:data:`DECISIONS`). Nothing is asserted: it measures.
 """
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ from pathlib import Path
 from bench.bench_planner import ROOT, _cases, _run
 from core2d.planner.flow import PAPER, PULLING
 
-__all__ = ["VARIANTS", "summary", "markdown", "main"]
+__all__ = ["VARIANTS", "DECISIONS", "summary", "markdown", "main"]
 
 VARIANTS = {
     "pulling": PULLING,
@@ -45,10 +46,20 @@ VARIANTS = {
 }
 """Variant name -> Flow (the default minus one addition, or the paper's flow)."""
 
+DECISIONS = {f"{name}{tag}": replace(base, **change)
+             for name, base in (("pulling", PULLING), ("paper", PAPER))
+             for tag, change in ((" -detection", {"detection": False}),
+                                 (" -pair", {"pair": False}), (" lifo", {"lifo": True}),
+                                 (" same=2eps", {"same": 4.0}))}
+"""The paper's own decisions changed one at a time (``--decisions``): no single
+probe detection (Fig. 6), no Case 2-1 (P_1st, P_2nd) (§4.3.3), areas last
+registered first, the same-contact radius 2 eps instead of eps/2."""
+ALL = {**VARIANTS, **DECISIONS}
+
 
 def _job(job):
     variant, (fn, a) = job
-    row = _run((fn, a + ({"flow": VARIANTS[variant]},)))
+    row = _run((fn, a + ({"flow": ALL[variant]},)))
     if row is not None:
         row["variant"] = variant
     return row
@@ -102,14 +113,17 @@ def main(argv=None) -> int:
     p.add_argument("--mesh-slices", type=int, default=8, help="z slices per real mesh (default 8)")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
     p.add_argument("--variants", default=",".join(VARIANTS),
-                   help="comma-separated subset of " + ", ".join(VARIANTS))
+                   help="comma-separated subset of " + ", ".join(ALL))
+    p.add_argument("--decisions", action="store_true",
+                   help="also every variant of DECISIONS (the paper's own decisions)")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--json", help="write every row to this file")
     args = p.parse_args(argv)
     variants = [v.strip() for v in args.variants.split(",") if v.strip()]
-    bad = [v for v in variants if v not in VARIANTS]
+    variants += list(DECISIONS) if args.decisions else []
+    bad = [v for v in variants if v not in ALL]
     if bad or not variants:
-        p.exit(2, f"ablation: unknown variants {bad} (known: {', '.join(VARIANTS)})\n")
+        p.exit(2, f"ablation: unknown variants {bad} (known: {', '.join(ALL)})\n")
     if args.quick:
         args.per_kind, args.slices = 2, 1
     from outlines import KINDS  # bench_planner put tests/ on sys.path

@@ -26,7 +26,16 @@ of :class:`Flow`:
 * ``audit`` -- contour no area holds any more is registered again
   (:mod:`core2d.planner.audit`).
 
-``paper`` switches all of them off: Fig. 16 only. Why a configuration of one
+``paper`` switches all of them off: Fig. 16 only.
+
+Four of the paper's own decisions can be changed too, for the tests and
+``bench.ablation`` that ask what each decides (never by a user):
+``detection`` -- single probe detection (Fig. 6) generates G_i of an area
+whose A_i and B_i lie on one posture; ``pair`` -- Case 2-1 registers
+(P_1st, P_2nd) (§4.3.3); ``lifo`` -- areas processed last registered
+first instead of breadth first; ``same`` -- the same-contact radius of the
+Theorem 1 dead end and of §4.4 in units of eps/2
+(:attr:`~core2d.resolution.Resolution.tip_zone`). Why a configuration of one
 planner and not a second driver: the paper's steps are the bulk of the
 planner (:class:`core2d.planner.run.Exploration`), and a second copy of them
 would drift; the additions are a handful of branches, and naming each
@@ -42,7 +51,8 @@ __all__ = ["Flow", "PULLING", "PAPER", "FLOWS"]
 
 @dataclass(frozen=True)
 class Flow:
-    """The planner's additions to Fig. 16, each on (True) or off."""
+    """The planner's additions to Fig. 16, each on (True) or off; and four
+    of the paper's decisions (``detection``, ``pair``, ``lifo``, ``same``)."""
 
     map: bool = True
     covers: bool = True
@@ -51,6 +61,10 @@ class Flow:
     w3_proof: bool = True
     revisit: bool = True
     audit: bool = True
+    detection: bool = True
+    pair: bool = True
+    lifo: bool = False
+    same: float = 1.0
 
     def __post_init__(self):
         if (self.covers or self.w3_proof or self.revisit or self.audit) and not self.map:

@@ -16,7 +16,8 @@ closure of an area whose C_A^B was traced through other areas); ``-defer``
 (deferral and revisits: a dead end is W3 at once, §4.2.1); ``-audit`` (no
 registration of loose ends); ``-escape`` (§4.4's escape on the parent's A
 and B only, not the whole ancestry nor stale generations); ``-w3_proof``
-(Area(G_i) = 0 is W3 without the map's proof); ``paper``. ``--decisions``
+(Area(G_i) = 0 is W3 without the map's proof); ``paper``; ``paper +escape``
+(the paper's flow with the escape over the whole ancestry). ``--decisions``
 adds the paper's own decisions changed one at a time, under both flows
 (:data:`DECISIONS`). Nothing is asserted: it measures.
 """
@@ -43,6 +44,7 @@ VARIANTS = {
     "-escape": replace(PULLING, escape=False),
     "-w3_proof": replace(PULLING, w3_proof=False),
     "paper": PAPER,
+    "paper +escape": replace(PAPER, escape=True),
 }
 """Variant name -> Flow (the default minus one addition, or the paper's flow)."""
 
@@ -80,6 +82,7 @@ def summary(rows: list[dict], base: str = "pulling") -> list[dict]:
             "cov_lt99": sum(r["coverage"] < 0.99 for r in rs),
             "lids": sum(r["w3_count"] for r in rs),
             "unsound": sum(r["w3_unsound_count"] for r in rs),
+            "unknown": sum(r["unknown_count"] for r in rs),
             "motions": sum(r["motions"] for r in rs),
             "budget": sum(bool(r["budget_hit"]) for r in rs),
             "changed": sum(r["name"] in ref and any(
@@ -92,10 +95,12 @@ def summary(rows: list[dict], base: str = "pulling") -> list[dict]:
 def markdown(rows: list[dict]) -> str:
     """The summary as the README's markdown table."""
     out = ["| variant | slices | coverage (min) | coverage (mean) | slices < 0.99 | W3 lids | "
-           "unsound lids | motions | budget hits | slices changed |", "|" + "---|" * 10]
+           "unsound lids | unknown lids | motions | budget hits | slices changed |",
+           "|" + "---|" * 11]
     for s in rows:
         out.append(f"| `{s['variant']}` | {s['runs']} | {s['cov_min']:.4f} | {s['cov_mean']:.4f} | "
-                   f"{s['cov_lt99']} | {s['lids']} | {s['unsound']} | {s['motions']} | "
+                   f"{s['cov_lt99']} | {s['lids']} | {s['unsound']} | {s['unknown']} | "
+                   f"{s['motions']} | "
                    f"{s['budget']} | {s['changed']} |")
     return "\n".join(out)
 

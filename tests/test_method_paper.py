@@ -23,11 +23,12 @@ import recon3d
 import slicer
 from core2d.planner.flow import PAPER, PULLING, Flow
 from core2d.sim.probe import Probe
-from figure_scenes import (GRAZE_DIR, LIP_LEFT, SLIT, block, graze_point, make_probe, new_run,
-                           place, pose_to, run_one)
+from figure_scenes import (EPS, GRAZE_DIR, LIP_LEFT, OVERHANG_LEFT, SLIT, WORKSPACE, block,
+                           graze_point, make_probe, new_run, place, pose_to, run_one)
 from core2d.planner.areas import Area
 from recon3d.cli import main
 from recon3d.sensing.worker import family_slices
+from slicer.contact.exact import ExactContact
 
 NO_MAP = Flow(map=False, covers=False, w3_proof=False, revisit=False, audit=False)
 
@@ -149,11 +150,14 @@ def test_no_revisit(overhangs, monkeypatch, flow, used):
 
 @pytest.mark.parametrize("flow, used", [(PULLING, True), (Flow(covers=False), False),
                                         (PAPER, False)])
-def test_no_map_closure(overhangs, monkeypatch, flow, used):
+def test_no_map_closure(flow, used):
     """The map closes an area whose C_A^B was traced through other areas
-    (``covers``); off, no area is closed that way."""
-    res = _explore(overhangs, flow)
+    (``covers``); off, no area is closed that way. Whole slice: the
+    OVERHANG_LEFT block of ``figure_scenes.py`` (exact contact)."""
+    loops = block(OVERHANG_LEFT)
+    res = run_mod.explore(Probe(ExactContact(loops), WORKSPACE, EPS), EPS, flow=flow)
     assert any(a.note == "C_A^B traced through other areas" for a in res.areas) == used
+    assert res.w1 and not res.stats.budget_hit
 
 
 @pytest.mark.parametrize("flow, asked", [(PULLING, [True, True, False]),

@@ -10,7 +10,10 @@ no addition covers for it, and the test fails when the decision is removed:
 
 * single probe detection (Fig. 6, §4.2.1): without it an area whose A_i and
   B_i lie on one posture has the degenerate G_i of Definition 1 and is W3
-  at once -- a lid over reachable contour;
+  at once -- a lid over reachable contour. The planner makes the detection
+  where the area is registered (Fig. 12(c), Case 2-1) or, failing that,
+  when it is processed; either covers for the other, so only removing both
+  (``detection``) changes a slice;
 * Case 2-1 registers (P_1st, P_2nd) (§4.3.3): without it the contour the tip
   jumped over is held by no area and is never traced;
 * the same-contact radius eps/2: at 2 eps a Theorem 1 pass that found new

@@ -26,7 +26,7 @@ of :class:`Flow`:
 * ``audit`` -- contour no area holds any more is registered again
   (:mod:`core2d.planner.audit`).
 
-``paper`` switches all of them off: Fig. 16 only.
+``paper`` switches all of them off: Fig. 16 only (with §4.4's escape as worded).
 
 Four of the paper's own decisions can be changed too, for the tests and
 ``bench.ablation`` that ask what each decides (never by a user):
@@ -35,8 +35,11 @@ whose A_i and B_i lie on one posture; ``pair`` -- Case 2-1 registers
 (P_1st, P_2nd) (§4.3.3); ``lifo`` -- areas processed last registered
 first instead of breadth first; ``same`` -- the same-contact radius of the
 Theorem 1 dead end and of §4.4 in units of eps/2
-(:attr:`~core2d.resolution.Resolution.tip_zone`). Why a configuration of one
-planner and not a second driver: the paper's steps are the bulk of the
+(:attr:`~core2d.resolution.Resolution.tip_zone`) -- the one of the paper's
+resolution is eps/2 (``same = 1``). ``tests/test_paper_decisions.py`` shows
+on whole slices which of them decide the paper's flow.
+
+Why a configuration of one planner and not a second driver: the paper's steps are the bulk of the
 planner (:class:`core2d.planner.run.Exploration`), and a second copy of them
 would drift; the additions are a handful of branches, and naming each
 behind a switch keeps the paper's flow readable in ``Exploration.process``

@@ -4,8 +4,8 @@ Runs the cases of :mod:`bench.bench_planner` (its case list and scoring,
 unchanged) with the default planner (``pulling``), with the default minus
 one addition of :class:`core2d.planner.flow.Flow` at a time, and with the
 paper's Fig. 16 flow alone (``--method paper``). One row per variant:
-slices, reachable coverage (minimum, reachable-length weighted mean, slices
-below 0.99), W3 lids and unsound lids, motions, budget hits, and how many
+slices, reachable coverage (minimum, mean weighted by the reachable contour
+in eps, slices below 0.99), W3 lids and unsound lids, motions, budget hits, and how many
 slices changed against the default (any of coverage, lids, motions).
 
     python -m bench.ablation --quick          # 2 outlines per kind, 1 slice per scene
@@ -69,12 +69,13 @@ def summary(rows: list[dict], base: str = "pulling") -> list[dict]:
     out = []
     for v in dict.fromkeys(r["variant"] for r in rows):
         rs = [r for r in rows if r["variant"] == v and "error" not in r]
-        reach = sum(r["reachable_length"] for r in rs)
+        reach = sum(r["reachable_length"] / r["eps"] for r in rs)  # in eps: scale-free
         out.append({
             "variant": v, "runs": len(rs),
             "crashes": sum("error" in r for r in rows if r["variant"] == v),
             "cov_min": min(r["coverage"] for r in rs),
-            "cov_mean": sum(r["coverage"] * r["reachable_length"] for r in rs) / max(reach, 1e-12),
+            "cov_mean": sum(r["coverage"] * r["reachable_length"] / r["eps"] for r in rs)
+            / max(reach, 1e-12),
             "cov_lt99": sum(r["coverage"] < 0.99 for r in rs),
             "lids": sum(r["w3_count"] for r in rs),
             "unsound": sum(r["w3_unsound_count"] for r in rs),

@@ -85,7 +85,8 @@ def test_a_narrow_slot_is_sensed_again_at_a_finer_eps():
 
 def test_a_slot_the_probe_slice_did_not_show_is_sensed_again_where_it_shows():
     # the slot only cuts the top 3 of 10 mm: the middle slice (z = 5.625) shows none
-    plate = Manifold.cube([40, 30, 10]) - Manifold.cube([2.5, 25, 4]).translate([18, 6, 7])
+    # 1.5 wide: at most 2 x the coarse eps, a feature the coarse pass shows to refine
+    plate = Manifold.cube([40, 30, 10]) - Manifold.cube([1.5, 25, 4]).translate([18, 6, 7])
     res = recon3d.run(_mesh(plate), slices="auto", max_slices=8, eps=0.5, jobs=1)
     ada = res.metrics["adaptive"]
     z, e = _heights(res), np.array(ada["eps"]["per_slice"])

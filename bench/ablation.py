@@ -14,8 +14,10 @@ slices changed against the default (any of coverage, lids, motions).
 Variants (``--variants`` picks a subset): ``pulling``; ``-covers`` (no map
 closure of an area whose C_A^B was traced through other areas); ``-defer``
 (deferral and revisits: a dead end is W3 at once, §4.2.1); ``-audit`` (no
-registration of loose ends); ``-w3_proof``
-(Area(G_i) = 0 is W3 without the map's proof); ``paper``. ``--decisions``
+registration of loose ends); ``-escape`` (§4.4's escape on the parent's A
+and B only, not the whole ancestry nor stale generations); ``-w3_proof``
+(Area(G_i) = 0 is W3 without the map's proof); ``paper``; ``paper +escape``
+(the paper's flow with the escape over the whole ancestry). ``--decisions``
 adds the paper's own decisions changed one at a time, under both flows
 (:data:`DECISIONS`). Nothing is asserted: it measures.
 """
@@ -39,8 +41,10 @@ VARIANTS = {
     "-covers": replace(PULLING, covers=False),
     "-defer": replace(PULLING, defer=False, revisit=False),
     "-audit": replace(PULLING, audit=False),
+    "-escape": replace(PULLING, escape=False),
     "-w3_proof": replace(PULLING, w3_proof=False),
     "paper": PAPER,
+    "paper +escape": replace(PAPER, escape=True),
 }
 """Variant name -> Flow (the default minus one addition, or the paper's flow)."""
 

@@ -17,7 +17,7 @@ from shapely.ops import unary_union
 
 from core2d import sense_slice
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.run import _reestablish
+from core2d.planner.run import STALE, _reestablish
 from core2d.readings import LEFT, RIGHT, TIP
 from core2d.planner.regions import G_region, Posture, in_V, trace_direction
 from core2d.planner.tracing import is_internal, plan_sides, trace_side
@@ -304,6 +304,46 @@ def test_fig15_same_area_again_requests_the_escape():
     run.process(same)
     assert run.counters.escapes == 1
     assert [r.rule for r in run.result.areas[-2:]] == ["escape", "escape"]
+
+
+def test_fig15_a_loop_over_several_generations_requests_the_escape():
+    """§4.4 over the whole ancestry: a creeping loop -- a grandchild that
+    registers its grandparent's A and B again, whatever came in between --
+    is a loop the direct-parent test cannot see."""
+    probe = make_probe(block(V_POCKET))
+    run = new_run(probe)
+    root = vertical_area(probe, (30, 60), (70, 60))
+    run.add(root)
+    run.queue.popleft()
+    mid = vertical_area(probe, (30, 60), (60, 50))  # a new area: no escape
+    run.children(root, [mid], traced=5 * EPS)
+    run.queue.popleft()
+    assert not mid.escape
+    again = vertical_area(probe, (30, 60 + TOL / 2), (70, 60))  # the root again
+    fresh = vertical_area(probe, (35, 55), (60, 50))
+    run.children(mid, [again, fresh], traced=5 * EPS)
+    assert again.escape and not fresh.escape
+
+
+def test_fig15_generations_that_trace_nothing_request_the_escape():
+    """§4.4: 'the tip can find the same point repeatedly' -- STALE generations
+    in a row that trace less than eps of new contour request the escape,
+    even with A and B creeping (no pair repeats)."""
+    probe = make_probe(block(V_POCKET))
+    run = new_run(probe)
+    area = vertical_area(probe, (30, 60), (70, 60))
+    run.add(area)
+    run.queue.popleft()
+    for k in range(STALE):
+        assert not area.escape
+        kid = vertical_area(probe, (31 + k, 60), (69 - k, 60))  # creeping, never the same
+        run.children(area, [kid], traced=0.5 * EPS)
+        run.queue.popleft()
+        area = kid
+    assert area.escape and area.stale == STALE
+    fresh = vertical_area(probe, (40, 60), (60, 60))
+    run.children(area, [fresh], traced=2 * EPS)  # new contour traced: counting restarts
+    assert fresh.stale == 0 and not fresh.escape
 
 
 def test_fig15_endless_escapes_still_bring_the_shape_in_relief():

@@ -1,7 +1,7 @@
 """``--method paper``: the paper's Fig. 16 flow alone takes no decision the paper does not.
 
 Each addition of the default planner (its map, the map's closure of areas
-traced through others, deferral of dead
+traced through others, the escape over the whole ancestry, deferral of dead
 ends, W3 only with a proof, revisits, the audit) sits behind one switch of
 :class:`core2d.planner.flow.Flow`. Per addition: a spy shows it runs with the
 default flow (so it is reachable on that scene), never with ``PAPER``, and
@@ -78,7 +78,7 @@ def _slit_area():
     return probe, Area(LIP_LEFT.copy(), floor, pose, pose)
 
 
-ADDITIONS = ("map", "covers", "defer", "w3_proof", "revisit", "audit")
+ADDITIONS = ("map", "covers", "escape", "defer", "w3_proof", "revisit", "audit")
 
 
 def test_the_presets():
@@ -160,11 +160,12 @@ def test_no_map_closure(flow, used):
     assert res.w1 and not res.stats.budget_hit
 
 
-@pytest.mark.parametrize("flow", [PULLING, PAPER])
-def test_escape_as_section_4_4_words_it(flow):
-    """§4.4 in both flows: a kid repeating its parent's A and B asks for the
-    escape; one repeating only its grandparent's does not (an escape over
-    the whole ancestry was measured by bench.ablation and removed)."""
+@pytest.mark.parametrize("flow, asked", [(PULLING, [True, True, False]),
+                                         (Flow(escape=False), [False, True, False]),
+                                         (PAPER, [False, True, False])])
+def test_escape_over_the_ancestry(flow, asked):
+    """§4.4: a kid repeating its grandparent's A and B asks for the escape only
+    over the whole ancestry (``escape``); one repeating its parent's always."""
     probe, area = _slit_area()
     run = new_run(probe, flow)
     grand = (area.a + [0.0, 30.0], area.b + [0.0, 30.0])
@@ -173,9 +174,21 @@ def test_escape_as_section_4_4_words_it(flow):
             Area(area.a.copy(), area.b.copy(), area.pose_a, area.pose_b),
             Area(area.a + [5.0, 0.0], area.b, area.pose_a, area.pose_b)]
     run.add(area)
-    run.children(run.queue.popleft(), kids)
-    assert [k.escape for k in kids] == [False, True, False]
-    assert all(k.lineage[-1][0] is area.a for k in kids)
+    run.children(run.queue.popleft(), kids, traced=10.0)
+    assert [k.escape for k in kids] == asked
+
+
+@pytest.mark.parametrize("flow, asked", [(PULLING, True), (Flow(escape=False), False)])
+def test_escape_after_stale_generations(flow, asked):
+    """The STALE-th generation in a row that traced nothing new asks for the
+    escape only with ``escape`` on."""
+    probe, area = _slit_area()
+    run = new_run(probe, flow)
+    area.stale = run_mod.STALE - 1
+    kid = Area(area.a + [5.0, 0.0], area.b, area.pose_a, area.pose_b)
+    run.add(area)
+    run.children(run.queue.popleft(), [kid], traced=0.0)
+    assert kid.escape == asked
 
 
 @pytest.mark.parametrize("flow, used", [(PULLING, True), (Flow(audit=False), False),

@@ -26,8 +26,9 @@ class Area:
         area is found by rotating the probe about its tip (Definition 1);
         ``zero_G`` records Area(G_i) = 0.
     escape : bool -- infinite loop escape requested (§4.4).
-    lineage : tuple of ((2,) float, (2,) float) -- (A, B) of every ancestor
-        (a revisit's contact is new only when no child repeats one).
+    lineage : tuple of ((2,) float, (2,) float) -- (A, B) of every ancestor,
+        for the §4.4 test over the whole ancestry.
+    stale : int -- generations in a row whose processing traced no new contour.
     tries : int -- passes through the lid that found nothing new (revisits).
     seen : tuple of (2,) float -- contacts at which revisit passes split
         this area's ancestors (never new twice).
@@ -45,6 +46,7 @@ class Area:
     G: BaseGeometry | None = None  # G_i made at detection time (single probe detection)
     zero_G: bool = False  # Area(G_i) = 0 verified at detection time
     lineage: tuple = ()
+    stale: int = 0
     tries: int = 0
     seen: tuple = ()
 

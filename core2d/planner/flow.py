@@ -11,8 +11,12 @@ of :class:`Flow`:
   (:class:`~core2d.planner.known.KnownContour`): a pass touching recorded
   contour is a dead end;
 * ``covers`` -- with the map, an area whose C_A^B was traced through other
-  areas is closed as traced (:meth:`KnownContour.covers`), when it is
-  processed and when it is revisited;
+  areas is closed as traced (:meth:`KnownContour.covers`);
+* ``escape`` -- §4.4's escape asked for over the whole ancestry: a new area
+  repeating the A and B of *any* ancestor, or the third generation in a row
+  that traced no new contour. Off, the escape is asked for as §4.4 words
+  it: the area repeats its parent's A and B (the same contact points found
+  again), or the bisection fails;
 * ``defer`` -- a dead end (no pass, a pass finding no new contact) is
   deferred instead of becoming W3 on the spot as §4.2.1 says;
 * ``w3_proof`` -- Area(G_i) = 0 gives W3 only when the map proves that no
@@ -22,12 +26,7 @@ of :class:`Flow`:
 * ``audit`` -- contour no area holds any more is registered again
   (:mod:`core2d.planner.audit`).
 
-``paper`` switches all of them off: Fig. 16 only. §4.4's escape is the
-paper's in both: asked for when an area repeats its parent's A and B (the
-same contact points found again) or the bisection fails. An escape over the
-whole ancestry (any ancestor's A and B, or three generations in a row that
-traced nothing new) bought nothing on the ``bench.ablation`` set and was
-removed.
+``paper`` switches all of them off: Fig. 16 only (with §4.4's escape as worded).
 
 Four of the paper's own decisions can be changed too, for the tests and
 ``bench.ablation`` that ask what each decides (never by a user):
@@ -35,7 +34,7 @@ Four of the paper's own decisions can be changed too, for the tests and
 whose A_i and B_i lie on one posture; ``pair`` -- Case 2-1 registers
 (P_1st, P_2nd) (§4.3.3); ``lifo`` -- areas processed last registered
 first instead of breadth first; ``same`` -- the same-contact radius of the
-Theorem 1 dead end, of single probe detection and of §4.4 in units of eps/2
+Theorem 1 dead end and of §4.4 in units of eps/2
 (:attr:`~core2d.resolution.Resolution.tip_zone`) -- the one of the paper's
 resolution is eps/2 (``same = 1``). ``tests/test_paper_decisions.py`` shows
 on whole slices which of them decide the paper's flow.
@@ -60,6 +59,7 @@ class Flow:
 
     map: bool = True
     covers: bool = True
+    escape: bool = True
     defer: bool = True
     w3_proof: bool = True
     revisit: bool = True
@@ -77,8 +77,8 @@ class Flow:
 PULLING = Flow()
 """The default: Fig. 16 with every addition."""
 
-PAPER = Flow(map=False, covers=False, defer=False, w3_proof=False, revisit=False,
-             audit=False)
+PAPER = Flow(map=False, covers=False, escape=False, defer=False, w3_proof=False,
+             revisit=False, audit=False)
 """The paper's Fig. 16 alone: dead ends and Area(G_i) = 0 are W3 (§4.2.1)."""
 
 FLOWS = {"pulling": PULLING, "paper": PAPER}

@@ -206,7 +206,7 @@ def revisit_one(run: Exploration, area):
     Returns a W3 reason when the lid passed its proof or its probing and
     waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
-    if run.flow.covers and known.covers(area.a, area.b, run.res.tip_zone):
+    if known.covers(area.a, area.b, run.res.tip_zone):
         return run.close(area, "traced", "C_A^B traced through other areas")
     if on_recorded(run, area):
         return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")

@@ -9,9 +9,9 @@ recorded itself; it never sees the contour. Per unknown area A_iB_i:
    :mod:`core2d.planner.revisit` are the only ways to W3.
 3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i).
 4. Bisection local concave point search (Theorems 2, 3) to D_i. Infinite
-   loop escape (§4.4) splits A_iB_i at C when the area repeats its parent's
-   A and B (the same contact points found again) or when the bisection
-   fails.
+   loop escape (§4.4) splits A_iB_i at C when the area repeats an ancestor's
+   A and B, when generations in a row trace no new contour, or when the
+   bisection fails.
 5. Tracing motion planning (Theorem 4) from D_i on one or both sides; the
    events Case 1 - 4 register new areas by the rule of §4.3.3 (and the
    Fig. 12(c) split for a one-sided start).
@@ -52,6 +52,9 @@ from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
 __all__ = ["explore", "Exploration", "Budget"]
+
+#: generations in a row without new traced contour before §4.4 escape
+STALE = 3
 
 
 class Budget:
@@ -173,9 +176,9 @@ class Exploration:
         rec.outcome, rec.note = "deferred", why
         self.deferred.append(area)
 
-    def traced(self, polylines, ends):
+    def traced(self, polylines, ends) -> float:
         """Record W1 polylines (material on the right) and the postures that
-        touched their ends. Noisy readings are smoothed
+        touched their ends; their total length. Noisy readings are smoothed
         over the sensor's jitter first (:func:`core2d.planner.denoise.smooth`)."""
         polylines = [smooth(pl, self.res) for pl in polylines]
         self.result.w1.extend(polylines)
@@ -183,15 +186,23 @@ class Exploration:
         for pl, (pose_first, pose_last) in zip(polylines, ends):
             if self.known is not None:
                 self.known.add(pl, pose_first, pose_last)
+        return float(sum(np.hypot(*np.diff(pl, axis=0).T).sum() for pl in polylines))
 
-    def children(self, area, kids):
-        """Register ``kids`` of ``area``; §4.4: a kid repeating the A and B of
-        its parent (the same contact points found again) requests the escape."""
+    def children(self, area, kids, traced=0.0):
+        """Register ``kids`` of ``area``; §4.4 over the whole ancestry: a kid
+        repeating the A and B of any ancestor, or the STALE-th generation in
+        a row that traced less than eps of new contour, requests the escape.
+        Without ``flow.escape``, §4.4 as worded: a kid repeating its parent's
+        A and B (the same contact points found again)."""
         same = self.same  # contacts closer than eps/2 are one contact
-        lineage = area.lineage + ((area.a, area.b),)  # for revisit's new-contact test
+        lineage = area.lineage + ((area.a, area.b),)
+        stale = 0 if traced >= self.eps else area.stale + 1
+        asked = lineage if self.flow.escape else lineage[-1:]
         for kid in kids:
-            kid.lineage = lineage
-            kid.escape = _same(kid.a, area.a, same) and _same(kid.b, area.b, same)
+            kid.lineage, kid.stale = lineage, stale
+            if (stale >= STALE and self.flow.escape) or any(
+                    _same(kid.a, a, same) and _same(kid.b, b, same) for a, b in asked):
+                kid.escape = True
             self.add(kid)
         self.close(area, "split" if kids else "traced")
 
@@ -264,6 +275,7 @@ class Exploration:
         pose_d = Posture(local.reading.joint, local.reading.direction)
         kids = []
         dq = None
+        traced = 0.0
         if len(sides) == 1 and q is not None:  # Fig. 12(c): (D_i, Q) is a single
             dq = register(local.point, pose_d, q.point, pose_d, sides[0], area.index,
                           "fig12c", area.depth + 1)  # probe detection: G_i now
@@ -277,7 +289,7 @@ class Exploration:
                 continue
             lines, new, _, ends = trace_side(probe, area, G, joint_i, local, toward_B,
                                              self.budget, self.flow)
-            self.traced(lines, ends)
+            traced += self.traced(lines, ends)
             kids.extend(new)
         if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)
             fin_is_A = sides[0]  # the side not traced
@@ -291,7 +303,7 @@ class Exploration:
             else:
                 kids.append(register(local.point, pose_d, p_fin, pose_fin, fin_is_A,
                                      area.index, "one-sided", d))
-        self.children(area, kids)
+        self.children(area, kids, traced)
 
 
 def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int = 4000,

@@ -43,7 +43,7 @@ def _score(loops, result, eps, name, group) -> dict:
     return row
 
 
-def _outline_case(kind, seed, budget):
+def _outline_case(kind, seed, budget, opts=None):
     from outlines import outline
 
     from core2d import sense_slice
@@ -53,11 +53,11 @@ def _outline_case(kind, seed, budget):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    res = sense_slice(ExactContact(loops), ws, 1.0, max_motions=budget)
+    res = sense_slice(ExactContact(loops), ws, 1.0, max_motions=budget, **(opts or {}))
     return _score(loops, res, 1.0, f"{kind}-{seed}", f"outline:{kind}")
 
 
-def _file_case(path, budget):
+def _file_case(path, budget, opts=None):
     from core2d import sense_slice
     from slicer import ExactContact
 
@@ -67,11 +67,11 @@ def _file_case(path, budget):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + eps))
-    res = sense_slice(ExactContact(loops), ws, eps, max_motions=budget)
+    res = sense_slice(ExactContact(loops), ws, eps, max_motions=budget, **(opts or {}))
     return _score(loops, res, eps, Path(path).stem, "cases")
 
 
-def _mesh_case(source, axis, count, index, budget, group):
+def _mesh_case(source, axis, count, index, budget, group, opts=None):
     import meshes
     import slicer
     from core2d import sense_slice
@@ -82,7 +82,8 @@ def _mesh_case(source, axis, count, index, budget, group):
     if not cut.loops:
         return None
     center, radius = cut.bounding_circle()
-    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps, max_motions=budget)
+    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps, max_motions=budget,
+                      **(opts or {}))
     loops = [np.asarray(lp) for lp in cut.loops]
     return _score(loops, res, eps, f"{Path(str(source)).name}:{axis}{index}/{count}", group)
 

@@ -12,7 +12,7 @@ between the two logs every motion (``result.motions``).
 from __future__ import annotations
 
 from core2d.planner.finger import finger_probe
-from core2d.planner.flow import FLOWS
+from core2d.planner.flow import FLOWS, Flow
 from core2d.planner.follow import follow_contour
 from core2d.planner.run import explore
 from core2d.result import SliceResult
@@ -30,7 +30,7 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
                 tol: float | None = None, max_motions: int = 20000, max_areas: int = 4000,
                 bootstrap_count: int = 12, method: str = "pulling", directions: int = 32,
                 spacing: float | None = None, sensor: SensorModel | None = None,
-                friction: float = 0.0) -> SliceResult:
+                friction: float = 0.0, flow: Flow | None = None) -> SliceResult:
     """Run the pulling-motion algorithm (or finger probing) on one closed slice.
 
     Parameters
@@ -55,6 +55,9 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
         (:mod:`core2d.sim.sensor`); default the paper's perfect sensing.
     friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`;
         default 0, frictionless). The planner is not told it.
+    flow : Flow, optional -- the planner's additions switched one by one
+        (:mod:`core2d.planner.flow`, ``bench.ablation``); overrides the flow
+        that ``method`` names.
 
     Returns
     -------
@@ -68,6 +71,7 @@ def sense_slice(contact: ContactModel, workspace, eps: float, probe_length: floa
     elif method == "follow":
         result = follow_contour(probe, eps, max_motions)
     else:
-        result = explore(probe, eps, max_motions, max_areas, bootstrap_count, FLOWS[method])
+        result = explore(probe, eps, max_motions, max_areas, bootstrap_count,
+                         flow or FLOWS[method])
     result.motions = probe.log()
     return result

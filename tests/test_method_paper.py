@@ -1,7 +1,8 @@
 """``--method paper``: the paper's Fig. 16 flow alone takes no decision the paper does not.
 
-Each addition of the default planner (its map, deferral of dead ends, W3 only
-with a proof, revisits, the audit) sits behind one switch of
+Each addition of the default planner (its map, the map's closure of areas
+traced through others, the escape over the whole ancestry, deferral of dead
+ends, W3 only with a proof, revisits, the audit) sits behind one switch of
 :class:`core2d.planner.flow.Flow`. Per addition: a spy shows it runs with the
 default flow (so it is reachable on that scene), never with ``PAPER``, and
 never with a flow where only its own switch is off (so each test fails when
@@ -11,6 +12,7 @@ that switch is removed). Scenes: the Fig. 6(b) slit of ``figure_scenes.py``
 from __future__ import annotations
 
 import json
+import sys
 
 import numpy as np
 import pytest
@@ -22,13 +24,14 @@ import recon3d
 import slicer
 from core2d.planner.flow import PAPER, PULLING, Flow
 from core2d.sim.probe import Probe
-from figure_scenes import (GRAZE_DIR, LIP_LEFT, SLIT, block, graze_point, make_probe, place,
-                           pose_to, run_one)
+from figure_scenes import (EPS, GRAZE_DIR, LIP_LEFT, OVERHANG_LEFT, SLIT, WORKSPACE, block,
+                           graze_point, make_probe, new_run, place, pose_to, run_one)
 from core2d.planner.areas import Area
 from recon3d.cli import main
 from recon3d.sensing.worker import family_slices
+from slicer.contact.exact import ExactContact
 
-NO_MAP = Flow(map=False, w3_proof=False, revisit=False, audit=False)
+NO_MAP = Flow(map=False, covers=False, w3_proof=False, revisit=False, audit=False)
 
 
 class Spy:
@@ -76,9 +79,14 @@ def _slit_area():
     return probe, Area(LIP_LEFT.copy(), floor, pose, pose)
 
 
+ADDITIONS = ("map", "covers", "escape", "defer", "w3_proof", "revisit", "audit")
+
+
 def test_the_presets():
-    assert PULLING == Flow() and all(vars(PULLING).values())
-    assert not any(vars(PAPER).values())
+    assert PULLING == Flow() and all(getattr(PULLING, k) for k in ADDITIONS)
+    assert not any(getattr(PAPER, k) for k in ADDITIONS)
+    for flow in (PULLING, PAPER):  # the paper's own decisions as the paper has them
+        assert flow.detection and flow.pair and not flow.lifo and flow.same == 1.0
     with pytest.raises(ValueError, match="need the map"):
         Flow(map=False)
 
@@ -139,6 +147,57 @@ def test_no_revisit(overhangs, monkeypatch, flow, used):
     res = _explore(overhangs, flow)
     assert (spy.calls["revisit"] > 0) == used
     assert any(a.rule == "revisit" for a in res.areas) == used
+
+
+@pytest.mark.parametrize("flow, used", [(PULLING, True), (Flow(covers=False), False),
+                                        (PAPER, False)])
+def test_no_map_closure(monkeypatch, flow, used):
+    """The map closes an area whose C_A^B was traced through other areas when
+    the area is processed (``covers``); off, ``process`` never asks the map
+    (the revisit's own closure of a deferred area stays with the revisit).
+    Whole slice: the OVERHANG_LEFT block of ``figure_scenes.py`` (exact contact)."""
+    asked = []
+    real = known_mod.KnownContour.covers
+
+    def covers(self, *a, **kw):
+        asked.append(sys._getframe(1).f_code.co_name)
+        return real(self, *a, **kw)
+    monkeypatch.setattr(known_mod.KnownContour, "covers", covers)
+    loops = block(OVERHANG_LEFT)
+    res = run_mod.explore(Probe(ExactContact(loops), WORKSPACE, EPS), EPS, flow=flow)
+    assert ("process" in asked) == used
+    assert res.w1 and not res.stats.budget_hit
+
+
+@pytest.mark.parametrize("flow, asked", [(PULLING, [True, True, False]),
+                                         (Flow(escape=False), [False, True, False]),
+                                         (PAPER, [False, True, False])])
+def test_escape_over_the_ancestry(flow, asked):
+    """§4.4: a kid repeating its grandparent's A and B asks for the escape only
+    over the whole ancestry (``escape``); one repeating its parent's always."""
+    probe, area = _slit_area()
+    run = new_run(probe, flow)
+    grand = (area.a + [0.0, 30.0], area.b + [0.0, 30.0])
+    area.lineage = (grand,)
+    kids = [Area(grand[0].copy(), grand[1].copy(), area.pose_a, area.pose_b),
+            Area(area.a.copy(), area.b.copy(), area.pose_a, area.pose_b),
+            Area(area.a + [5.0, 0.0], area.b, area.pose_a, area.pose_b)]
+    run.add(area)
+    run.children(run.queue.popleft(), kids, traced=10.0)
+    assert [k.escape for k in kids] == asked
+
+
+@pytest.mark.parametrize("flow, asked", [(PULLING, True), (Flow(escape=False), False)])
+def test_escape_after_stale_generations(flow, asked):
+    """The STALE-th generation in a row that traced nothing new asks for the
+    escape only with ``escape`` on."""
+    probe, area = _slit_area()
+    run = new_run(probe, flow)
+    area.stale = run_mod.STALE - 1
+    kid = Area(area.a + [5.0, 0.0], area.b, area.pose_a, area.pose_b)
+    run.add(area)
+    run.children(run.queue.popleft(), [kid], traced=0.0)
+    assert kid.escape == asked
 
 
 @pytest.mark.parametrize("flow, used", [(PULLING, True), (Flow(audit=False), False),

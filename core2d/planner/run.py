@@ -81,11 +81,10 @@ def _reestablish(probe: Robot, pose):
     return probe.insert(2.5 * probe.radius)
 
 
-def _single_posture(area, probe: Robot):
-    """The posture that touched both A_i and B_i (single probe detection,
-    Fig. 6), or None. Registration may store two postures a step apart that
-    both carry A and B -- that is still one detection."""
-    same = probe.resolution.tip_zone
+def _single_posture(area, probe: Robot, same: float):
+    """The posture that touched both A_i and B_i within ``same`` (single
+    probe detection, Fig. 6), or None. Registration may store two postures a
+    step apart that both carry A and B -- that is still one detection."""
     for pose in (area.pose_b, area.pose_a):
         if all(near_probe(p, pose.joint, pose.direction, probe.length, same)
                for p in (area.a, area.b)):
@@ -139,6 +138,7 @@ class Exploration:
     def __init__(self, probe: Robot, eps: float, budget: Budget, flow: Flow = PULLING):
         self.probe, self.eps, self.budget, self.flow = probe, eps, budget, flow
         self.res = probe.resolution
+        self.same = self.res.tip_zone * flow.same  # contacts this close are one contact
         self.angle_tol = self.res.angle_tol(probe.length)
         self.counters = PlannerCounters()
         self.result = SliceResult()
@@ -191,14 +191,17 @@ class Exploration:
     def children(self, area, kids, traced=0.0):
         """Register ``kids`` of ``area``; §4.4 over the whole ancestry: a kid
         repeating the A and B of any ancestor, or the STALE-th generation in
-        a row that traced less than eps of new contour, requests the escape."""
-        same = self.res.tip_zone  # contacts closer than eps/2 are one contact
+        a row that traced less than eps of new contour, requests the escape.
+        Without ``flow.escape``, §4.4 as worded: a kid repeating its parent's
+        A and B (the same contact points found again)."""
+        same = self.same  # contacts closer than eps/2 are one contact
         lineage = area.lineage + ((area.a, area.b),)
         stale = 0 if traced >= self.eps else area.stale + 1
+        asked = lineage if self.flow.escape else lineage[-1:]
         for kid in kids:
             kid.lineage, kid.stale = lineage, stale
-            if stale >= STALE or any(_same(kid.a, a, same) and _same(kid.b, b, same)
-                                     for a, b in lineage):
+            if (stale >= STALE and self.flow.escape) or any(
+                    _same(kid.a, a, same) and _same(kid.b, b, same) for a, b in asked):
                 kid.escape = True
             self.add(kid)
         self.close(area, "split" if kids else "traced")
@@ -207,13 +210,14 @@ class Exploration:
         probe, eps = self.probe, self.eps
         if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
             return self.close(area, "W2", "Dist(A,B) < eps")
-        same = self.res.tip_zone
-        if self.flow.map and self.known.covers(area.a, area.b, same):
+        same = self.same
+        if self.flow.covers and self.known.covers(area.a, area.b, same):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)
         G = area.G
-        pose = None if G is not None else _single_posture(area, probe)
+        pose = None if G is not None or not self.flow.detection else _single_posture(
+            area, probe, same)
         if pose is not None:
             probe.note_phase("detection", area.index)
             G, ok = _single_detection(probe, pose, area)
@@ -275,7 +279,8 @@ class Exploration:
         if len(sides) == 1 and q is not None:  # Fig. 12(c): (D_i, Q) is a single
             dq = register(local.point, pose_d, q.point, pose_d, sides[0], area.index,
                           "fig12c", area.depth + 1)  # probe detection: G_i now
-            attach_pivot_G(dq, probe, q.face)
+            if self.flow.detection:
+                attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
             if k and _reestablish(probe, pose_d).tip_contact is None:
                 kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
@@ -283,7 +288,7 @@ class Exploration:
                                      not toward_B, area.index, "limit", area.depth + 1))
                 continue
             lines, new, _, ends = trace_side(probe, area, G, joint_i, local, toward_B,
-                                             self.budget)
+                                             self.budget, self.flow)
             traced += self.traced(lines, ends)
             kids.extend(new)
         if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)
@@ -328,7 +333,7 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
         run.add(area)
     while True:
         while run.queue and budget():
-            run.process(run.queue.popleft())
+            run.process(run.queue.pop() if flow.lifo else run.queue.popleft())
         if run.queue or not budget():
             break
         if run.deferred and flow.revisit:

@@ -81,7 +81,7 @@ def is_internal(p2, area, G, joint_i):
     return T_contains(joint_i, area.a, area.b, q) and not in_V(q, area.a, area.b)
 
 
-def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
+def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=None):
     """Trace one side from D_i; returns (w1 polylines, new areas, cases, ends).
 
     The polylines are oriented like C_{A_i}^{B_i} (material on the right);
@@ -97,6 +97,8 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
     local : LocalResult -- final bisection state at D_i.
     toward_B : bool -- side to trace.
     budget : callable -> bool -- True while motions remain.
+    flow : Flow, optional -- ``flow.pair`` False drops Case 2-1's
+        (P_1st, P_2nd) (bench.ablation and tests only).
     """
     t_star = local.reading.direction
     v, tau = trace_direction(t_star, toward_B)
@@ -130,9 +132,11 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget):
             if is_internal(p2, area, G, joint_i):
                 cases.append("case2-1")
                 kid = register(p1, pose1, p2, pose2, fin_is_A, area.index, "case2-1", depth)
-                if r.contacts[0].face != TIP and _on_probe(p1, probe):
+                if (r.contacts[0].face != TIP and _on_probe(p1, probe)
+                        and (flow is None or flow.detection)):
                     attach_pivot_G(kid, probe, r.contacts[0].face)  # Fig. 6
-                new.append(kid)
+                if flow is None or flow.pair:
+                    new.append(kid)
                 if r.contacts[0].face == TIP:
                     polylines.append(np.concatenate(pieces))
                     poses.append((first, pose1))

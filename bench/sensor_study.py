@@ -169,6 +169,19 @@ def markdown(summary) -> str:
     return "\n".join(rows)
 
 
+def write_csv(path: Path, rows) -> None:
+    """One line per case and level (the crashed cases with their error)."""
+    import csv
+
+    keys = sorted({k for r in rows for k in r})
+    head = ["group", "name", "noise", "taxel"]
+    keys = head + [k for k in keys if k not in head]
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def _levels(text):
     try:
         return tuple(tuple(float(x) for x in item.split(":")) for item in text.split(","))
@@ -189,6 +202,8 @@ def main(argv=None) -> int:
                    help="z-slices per mesh (default 1: the middle of 8)")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
+    p.add_argument("--csv", type=Path, default=None,
+                   help="also write one row per case and level to this CSV file")
     args = p.parse_args(argv)
     args.groups = [g.strip() for g in args.groups.split(",") if g.strip()]
     unknown = [g for g in args.groups if g not in GROUPS]
@@ -207,6 +222,8 @@ def main(argv=None) -> int:
     for r in rows:
         if "error" in r:
             print("CRASH", r["group"], r["name"], r["error"])
+    if args.csv is not None:
+        write_csv(args.csv, rows)
     print(markdown(summarise(rows)))
     print(f"\n{len(jobs)} cases in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return 0

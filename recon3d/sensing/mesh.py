@@ -61,7 +61,8 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
     tol = res.tol_share * res.first_eps if auto else res.tol
     settings = SenseSettings(normals, count, res.first_eps, tol, config.backend,
                              config.max_motions, config.bootstrap, config.method,
-                             float(config.noise), float(config.taxel), int(config.seed))
+                             float(config.noise), float(config.taxel), int(config.seed),
+                             float(config.torque_threshold), float(config.torque_noise))
 
     def sense(tasks):
         return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress)

@@ -44,6 +44,7 @@ class SenseSettings:
     noise, taxel : float -- the sensor's noise and taxel spacing, in eps
         (:mod:`core2d.sim.sensor`; 0: perfect sensing).
     seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
+    torque_threshold, torque_noise : float -- the torque sensor's, in eps.
     """
 
     axes: tuple
@@ -57,12 +58,15 @@ class SenseSettings:
     noise: float = 0.0
     taxel: float = 0.0
     seed: int = 0
+    torque_threshold: float = 0.0
+    torque_noise: float = 0.0
 
     def sensor(self, family: int, index: int) -> SensorModel | None:
         """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
-        if not (self.noise or self.taxel):
+        if not (self.noise or self.taxel or self.torque_threshold or self.torque_noise):
             return None
-        return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed).reseeded(
+        return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed,
+                                  self.torque_threshold, self.torque_noise).reseeded(
             family, index)
 
     @property

@@ -96,19 +96,6 @@ class Resolution:
         return self.eps + self.jitter
 
     @property
-    def lid_margin(self) -> float:
-        """eps / 2 (+ half the :attr:`jitter`) = :attr:`w2_dist` / 2: how
-        far from its touched ends a lid is searched for free lines (the W3
-        proof and the passes of :mod:`core2d.planner.revisit`). Half the W2
-        distance, so that every lid that is not W2 keeps lid samples
-        between its margins: with the same-contact radius :attr:`tip_zone`
-        (eps/2 + the whole jitter) a lid between eps + jitter and
-        eps + 2 jitter long had none, its proof was vacuous ("no line
-        crosses the lid") and it ended unknown without a pass. Perfect
-        sensing: eps / 2, the paper's resolution."""
-        return self.w2_dist / 2.0
-
-    @property
     def fan_spacing(self) -> float:
         """eps / 4: spacing of the fans at the tip, of the samples along the
         probe and the nominal joint step of a compliant trace."""

@@ -120,15 +120,6 @@ def bisection(probe: Robot, area, G, reading, max_iter=60):
     Rotation is constrained in a direction when the torque sensor reports it
     blocked (environment) or when the swing bound of Theorems 2/3 is used up
     (the boundary of T_i^(n), Fig. 10(b)).
-
-    The search has converged when the tip contact moved less than the contact
-    resolution tol twice in a row; with a noisy sensor, less than tol + the
-    sensor's jitter (:attr:`~core2d.resolution.Resolution.jitter`): two
-    readings of one point lie up to the jitter apart, so a noisy contact never
-    "moves less than tol", and the search would swing on until its bounds are
-    used up -- a random walk of readings that drifts D_i to an end of the area
-    (on a gently convex wall to B_i, whose trace then re-registers A_iB_i and
-    starts the §4.4 escape). Perfect sensing keeps the paper's tol.
     """
     r = reading
     last = r.tip_contact.point
@@ -155,7 +146,7 @@ def bisection(probe: Robot, area, G, reading, max_iter=60):
             return None
         moved = np.linalg.norm(tip.point - last)
         last = tip.point
-        small = small + 1 if moved < probe.resolution.tol + probe.resolution.jitter else 0
+        small = small + 1 if moved < probe.resolution.tol else 0
         if small >= 2:
             con_ccw, con_cw = r.blocked_ccw or con_ccw, r.blocked_cw or con_cw
             break

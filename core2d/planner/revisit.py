@@ -151,7 +151,7 @@ def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
-    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=run.res.lid_margin,
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=run.res.tip_zone,
                                 min_gap=run.angle_tol)
 
 
@@ -220,7 +220,7 @@ def revisit_one(run: Exploration, area):
             plan += _sweep(lines, area.dist, run.eps)
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
-                                    margin=run.res.lid_margin, min_gap=run.angle_tol)
+                                    margin=run.res.tip_zone, min_gap=run.angle_tol)
         plan = passes(back, area.b, area.a) if back else []
     ends_only, escaped = True, False
     for point, direction in plan:

@@ -193,6 +193,7 @@ def chart(summary, path: Path) -> None:
                 top.annotate(f"{s['budget']} budget hit{'s' * (s['budget'] > 1)}",
                              (xi, s["ratio_max"]), ha="center", va="bottom", fontsize=8,
                              color="red")
+        top.set_ylim(0, 1.12 * max(max(s["ratio_max"] for s in rs), 2.0))
         top.set_ylabel("motions / noiseless motions")
         top.set_title(f"{g} ({rs[0]['slices']} slices): motions")
         bottom.plot(x, [s["coverage_sensor"] for s in rs], "o-", label="total")

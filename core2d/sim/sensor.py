@@ -17,6 +17,17 @@ the simulator returns -- the planner sees only the degraded readings:
 * **joint readings** -- Gaussian noise on the joint position P (standard
   deviation ``noise``) and on the direction t (``noise / L`` radians, the
   same displacement at the tip): the joint position sensors' error.
+* **torque sensor** -- the blocked-rotation readings of §3.2 (is a small
+  rotation about the joint, moving the tip sideways by tol, blocked?). The
+  simulator measures how deep the surface intrudes into that rotation,
+  ``m`` (a length: ``reach - d`` of :meth:`core2d.sim.probe.Probe.sense`,
+  negative when the rotation is free); the sensor reads ``max(m, 0)``
+  plus Gaussian noise ``torque_noise`` and reports the rotation blocked when
+  the reading is at least ``torque_threshold``. A threshold hides slight
+  obstructions (a slope the check's tol-wide rotation barely touches); noise
+  above the threshold makes a free rotation read blocked now and then. Both
+  0 (the default) is the paper's torque sensor: blocked exactly when
+  ``m >= 0``.
 
 The simulator's own state (the true posture the rays are cast from) is
 never perturbed: noise is a property of the readings, not of the world.
@@ -43,6 +54,9 @@ class SensorModel:
     taxel : float -- spacing of the tactile elements along the probe
         (0: a continuous skin).
     seed : int -- seed of the noise.
+    torque_threshold : float -- smallest intrusion of the surface into the
+        torque check's rotation (a length) read as blocked (0: any contact).
+    torque_noise : float -- standard deviation of that reading (a length).
 
     >>> SensorModel.of_eps(2.0, noise=0.1, taxel=0.25).taxel
     0.5
@@ -51,17 +65,27 @@ class SensorModel:
     noise: float = 0.0
     taxel: float = 0.0
     seed: int = 0
+    torque_threshold: float = 0.0
+    torque_noise: float = 0.0
 
     @classmethod
     def of_eps(cls, eps: float, noise: float = 0.0, taxel: float = 0.0,
-               seed: int = 0) -> SensorModel:
-        """The model with ``noise`` and ``taxel`` given as multiples of eps."""
-        return cls(float(noise) * eps, float(taxel) * eps, int(seed))
+               seed: int = 0, torque_threshold: float = 0.0,
+               torque_noise: float = 0.0) -> SensorModel:
+        """The model with ``noise``, ``taxel`` and the torque figures given as
+        multiples of eps."""
+        return cls(float(noise) * eps, float(taxel) * eps, int(seed),
+                   float(torque_threshold) * eps, float(torque_noise) * eps)
+
+    @property
+    def exact_torque(self) -> bool:
+        """The paper's torque sensor: no threshold, no noise."""
+        return self.torque_threshold == 0 and self.torque_noise == 0
 
     @property
     def ideal(self) -> bool:
         """The paper's perfect sensing (§3.2): nothing to apply."""
-        return self.noise == 0 and self.taxel == 0
+        return self.noise == 0 and self.taxel == 0 and self.exact_torque
 
     def reseeded(self, *keys: int) -> SensorModel:
         """The same model with a seed derived from ``seed`` and ``keys`` (one
@@ -70,7 +94,9 @@ class SensorModel:
         return replace(self, seed=int(seq.generate_state(1)[0]))
 
     def as_dict(self) -> dict:
-        return {"noise": float(self.noise), "taxel": float(self.taxel), "seed": int(self.seed)}
+        return {"noise": float(self.noise), "taxel": float(self.taxel), "seed": int(self.seed),
+                "torque_threshold": float(self.torque_threshold),
+                "torque_noise": float(self.torque_noise)}
 
 
 class Sensor:
@@ -120,9 +146,29 @@ class Sensor:
         face = TIP if self.model.taxel and a >= self.length else c.face
         return Contact(point, face, float(min(a, self.length)))
 
-    def reading(self, r: Reading) -> Reading:
-        """``r`` as the sensors report it."""
+    def blocked(self, intrusion) -> tuple[bool, bool]:
+        """(blocked_ccw, blocked_cw) the torque sensor reports for the
+        surface's intrusion ``m`` (2,) into the ccw / cw check rotation
+        (lengths, negative or -inf: free; see the module doc)."""
+        m = np.asarray(intrusion, dtype=np.float64)
+        if self.model.exact_torque:
+            return bool(m[0] >= 0), bool(m[1] >= 0)
+        read = np.maximum(m, 0.0)
+        if self.model.torque_noise:
+            read = read + self.rng.normal(0.0, self.model.torque_noise, 2)
+        got = read >= self.model.torque_threshold
+        return bool(got[0]), bool(got[1])
+
+    def reading(self, r: Reading, intrusion=None) -> Reading:
+        """``r`` as the sensors report it; ``intrusion`` (2,): the true
+        torque-check intrusions (ccw, cw), re-read by :meth:`blocked` when
+        the torque sensor is not the paper's."""
         if self.model.ideal:
+            return r
+        if intrusion is not None and not self.model.exact_torque:
+            ccw, cw = self.blocked(intrusion)
+            r = replace(r, blocked_ccw=ccw, blocked_cw=cw)
+        if not (self.model.noise or self.model.taxel):
             return r
         seen = self.pose(r.joint, r.direction)
         contacts = tuple(self.contact(c, r.joint, r.direction, seen) for c in r.contacts)

@@ -8,7 +8,8 @@ import numpy as np
 
 from recon3d.viz import libs
 
-__all__ = ["pareto_chart", "baseline_chart", "stability_chart", "claims_chart"]
+__all__ = ["pareto_chart", "baseline_chart", "stability_chart", "sensor_chart",
+           "claims_chart"]
 
 
 def _plt():
@@ -170,11 +171,12 @@ def stability_chart(rows, breaks, path) -> None:
         elif factor in ("plane offset", "eps / edge"):
             ax.set_xscale("log")
             ax.minorticks_off()
-        elif factor == "noise":
+        elif factor in ("noise", "taxel"):
             ax.set_xscale("symlog", linthresh=0.01)
             ax.set_xlim(-0.002, max(xmap.values()) * 1.3)
         unit = {"plane offset": "offset above a vertex / face, x diagonal",
-                "noise": "contact noise sigma / eps", "resolution": "segments per circle",
+                "noise": "contact noise sigma / eps", "taxel": "taxel spacing / eps",
+                "resolution": "segments per circle",
                 "eps / edge": "eps / median mesh edge length"}.get(factor, "degrees")
         ax.set_xlabel(unit if cats is None else "")
         ax.set_ylim(-0.03, 1.05)
@@ -231,5 +233,45 @@ def claims_chart(rows, path) -> None:
     fig.suptitle("Pulling against pushing under Coulomb friction at the tip, middle z-slice "
                  "per case\n(a push with the rod inside the friction cone jams; pulls slide; "
                  "overlapping lines are shifted slightly in mu)")
+
+
+def sensor_chart(rows, path, factors=("noise", "taxel")) -> None:
+    """The stability study's sensor factors: per factor, motions (log) and
+    reachable coverage within eps/2 + 2 sigma per method, against the
+    sensor figure in eps; budget hits (black triangles) marked on both."""
+    plt = _plt()
+    factors = [f for f in factors if any(r["factor"] == f for r in rows)]
+    methods = list(dict.fromkeys(r["method"] for r in rows if r["factor"] in factors))
+    col = _colours(methods)
+    fig, axes = plt.subplots(2, max(len(factors), 1), figsize=(6.5 * max(len(factors), 1), 8),
+                             constrained_layout=True, squeeze=False)
+    for j, factor in enumerate(factors):
+        sel = [r for r in rows if r["factor"] == factor]
+        for i, (key, label) in enumerate((("motions", "motions per slice"),
+                                          ("coverage_sensor", "coverage within eps/2 + 2 sigma"))):
+            ax = axes[i, j]
+            for k, m in enumerate(methods):
+                rs = sorted((r for r in sel if r["method"] == m), key=lambda r: r["value"])
+                if not rs:
+                    continue
+                xs = [float(r["value"]) for r in rs]
+                ax.plot(xs, [r[key] for r in rs], "-" + "osD^"[k % 4], color=col[m], label=m,
+                        ms=9 - 2 * (k % 4), mfc="none" if k % 2 == 0 else col[m])
+                hit = [r for r in rs if r["budget_hit"]]
+                ax.scatter([float(r["value"]) for r in hit], [r[key] for r in hit], marker="v",
+                           color="black", s=60, zorder=5)
+            ax.set_xscale("symlog", linthresh=0.01)
+            if key == "motions":
+                ax.set_yscale("log")
+            else:
+                ax.set_ylim(-0.03, 1.05)
+            ax.set_xlabel(("contact noise sigma" if factor == "noise" else "taxel spacing")
+                          + " / eps")
+            ax.set_ylabel(label)
+            ax.set_title(f"{factor}: {label}")
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8)
+    fig.suptitle("Stability under a real sensor (core2d.SensorModel), fig18_overhangs middle "
+                 "slice; triangle = budget hit")
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -5,7 +5,8 @@ Parts (``--parts``; all by default):
 * ``pareto`` -- :mod:`.pareto`: pareto.csv / pareto.png, adaptive.csv;
 * ``backends`` -- :mod:`.backends`: backends.csv;
 * ``baseline`` -- :mod:`.baseline`: baseline.csv / baseline.png;
-* ``stability`` -- :mod:`.stability`: stability.csv / stability.png, breaks.csv;
+* ``stability`` -- :mod:`.stability`: stability.csv / stability.png, breaks.csv,
+  sensor.png (motions and coverage against the sensor's noise and taxel spacing);
 * ``claims`` -- :mod:`.claims`: claims.csv / claims.png, claims_summary.csv (pulling
   against pushing under tip friction).
 
@@ -163,6 +164,8 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
             write_csv(stage / "stability.csv", rows)
             write_csv(stage / "breaks.csv", breaks)
             charts.stability_chart(rows, breaks, stage / "stability.png")
+            if any(r["factor"] in stability.SENSOR_FACTORS for r in rows):
+                charts.sensor_chart(rows, stage / "sensor.png")
             lines.append("\nstability: where each method breaks (first value; none = never):")
             _table(lines, ["factor", "method", "breaks at", "why"], breaks,
                    ["factor", "method", "breaks_at", "why"], ["", "", "g", ""])

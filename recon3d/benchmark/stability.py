@@ -6,8 +6,10 @@ Factors (one task each value, :func:`run_factor`):
 
 * ``plane offset`` -- a plane 1e-3 ... 1e-9 x diagonal above a step top of
   ``stepped_pyramid`` (a horizontal face and its vertices), no nudge;
-* ``noise`` -- Gaussian noise of sigma = 0 ... eps on the reported contact
-  positions (:class:`NoisyContact`), ``fig18_overhangs``;
+* ``noise`` -- the sensor of :class:`core2d.SensorModel` with Gaussian noise
+  sigma = 0 ... eps on contact positions and joint readings (the project's one
+  noise model), ``fig18_overhangs``, every method;
+* ``taxel`` -- its taxel spacing 0 ... eps, ``fig18_overhangs``, every method;
 * ``resolution`` -- ``bowl`` at 4 tessellations (3D F@1% for pulling);
 * ``rotation x|y|z`` -- ``fig18_overhangs`` rotated about each axis (3D F@1%);
 * ``eps / edge`` -- eps from twice to 1/16 of the mesh's median edge length
@@ -23,7 +25,9 @@ values of each factor than ``--quick``, and 4 slices instead of 3 in its
 3D runs.
 
 A row per (factor, value, method, slice): crashed (and the error), budget
-hit, reachable coverage, F@1% (3D runs), seconds. :func:`breaking_points`
+hit, reachable coverage (and, for the sensor factors, within the sensor's
+tolerance eps/2 + 2 sigma: ``coverage_sensor``), motions, F@1% (3D runs),
+seconds. :func:`breaking_points`
 says where each method first breaks: a crash, a budget hit, or coverage
 (F@1%) more than 0.05 below the method's value at the first setting.
 """
@@ -38,41 +42,19 @@ import trimesh
 import meshes
 import recon3d
 import slicer
-from core2d import sense_slice
-from core2d.truth.metrics import slice_metrics
+from core2d import SensorModel, sense_slice
+from core2d.truth.metrics import sensor_metrics, slice_metrics
 from recon3d.benchmark.cases import workspace
 from recon3d.config import diagonal
 
-__all__ = ["NoisyContact", "stability_tasks", "run_factor", "breaking_points", "METHODS"]
+__all__ = ["stability_tasks", "run_factor", "breaking_points", "METHODS", "SENSOR_FACTORS"]
 
 METHODS = (("pulling", "embree"), ("pulling", "exact"), ("pulling", "trimesh"),
            ("finger", "embree"))
 
 
-class NoisyContact:
-    """A contact model whose reported contact positions carry Gaussian noise.
-
-    The hit point moves by N(0, sigma^2) in each coordinate; the distance
-    becomes the noisy point's projection on the ray (at least 0), so the
-    probe stops where it believes the contact is. Seeded: runs repeat.
-    """
-
-    def __init__(self, inner, sigma: float, seed: int = 0):
-        self.inner, self.sigma = inner, float(sigma)
-        self.rng = np.random.default_rng(seed)
-
-    def cast(self, origins, dirs, max_dist):
-        d, p, n = self.inner.cast(origins, dirs, max_dist)
-        if self.sigma <= 0:
-            return d, p, n
-        hit = np.isfinite(d)
-        p = p.copy()
-        p[hit] += self.rng.normal(0.0, self.sigma, (int(hit.sum()), 2))
-        o = np.atleast_2d(np.asarray(origins, float))
-        u = np.atleast_2d(np.asarray(dirs, float))
-        d = d.copy()
-        d[hit] = np.maximum(0.0, np.einsum("ij,ij->i", p[hit] - o[hit], u[hit]))
-        return d, p, n
+#: factors whose value is a sensor figure in eps (:class:`core2d.SensorModel`)
+SENSOR_FACTORS = ("noise", "taxel")
 
 
 def stability_tasks(quick: bool) -> list[dict]:
@@ -80,8 +62,10 @@ def stability_tasks(quick: bool) -> list[dict]:
     t = []
     for delta in (1e-3, 1e-5, 1e-7, 1e-9) if quick else (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9):
         t.append({"factor": "plane offset", "value": delta})
-    for s in (0.0, 0.03, 0.3, 1.0) if quick else (0.0, 0.01, 0.03, 0.1, 0.3, 1.0):
+    for s in (0.0, 0.1, 0.3, 1.0) if quick else (0.0, 0.01, 0.03, 0.1, 0.3, 1.0):
         t.append({"factor": "noise", "value": s})
+    for s in (0.0, 0.25, 1.0) if quick else (0.0, 0.1, 0.25, 0.5, 1.0):
+        t.append({"factor": "taxel", "value": s})
     for r in (8, 16, 32, 64):
         t.append({"factor": "resolution", "value": r})
     for ax in "xyz":
@@ -98,24 +82,27 @@ def stability_tasks(quick: bool) -> list[dict]:
     return t
 
 
-def _sense(slc, eps, method, backend, sigma=0.0, max_motions=20000):
-    """Sense one slice; a row fragment (crash caught and reported)."""
+def _sense(slc, eps, method, backend, sensor=None, max_motions=20000):
+    """Sense one slice with ``sensor`` (a :class:`core2d.SensorModel`, None:
+    perfect); a row fragment (crash caught and reported)."""
     t0 = time.perf_counter()
     try:
-        model = slc.contact(backend)
-        if sigma:
-            model = NoisyContact(model, sigma, seed=slc.index)
         budget = max_motions if method == "pulling" else 10 ** 7  # a finger grid is finite
-        res = sense_slice(model, workspace(slc, eps), eps, method=method, max_motions=budget)
+        res = sense_slice(slc.contact(backend), workspace(slc, eps), eps, method=method,
+                          max_motions=budget, sensor=sensor)
         loops = [np.asarray(lp) for lp in slc.loops]
         m = slice_metrics(loops, res, eps) if loops and not slc.open_chains else {}
+        if m:
+            m.update(sensor_metrics(loops, res, eps, sensor.noise if sensor else 0.0))
         return {"crashed": False, "error": "", "budget_hit": bool(res.stats.budget_hit),
-                "coverage": m.get("coverage", np.nan), "w3_soundness": m.get("w3_soundness", np.nan),
+                "coverage": m.get("coverage", np.nan),
+                "coverage_sensor": m.get("coverage_sensor", np.nan),
+                "w3_soundness": m.get("w3_soundness", np.nan),
                 "motions": res.stats.motions, "seconds": time.perf_counter() - t0}
     except Exception as exc:  # the study records crashes; the tests forbid them
         return {"crashed": True, "error": f"{type(exc).__name__}: {exc}"[:160], "budget_hit": False,
-                "coverage": np.nan, "w3_soundness": np.nan, "motions": 0,
-                "seconds": time.perf_counter() - t0}
+                "coverage": np.nan, "coverage_sensor": np.nan, "w3_soundness": np.nan,
+                "motions": 0, "seconds": time.perf_counter() - t0}
 
 
 def _run3d(mesh, slices, eps=None):
@@ -133,7 +120,7 @@ def _run3d(mesh, slices, eps=None):
 
 def _methods(task, quick):
     """The methods a factor compares (trimesh only where the geometry of contact matters)."""
-    if task["factor"] in ("plane offset", "eps / edge"):
+    if task["factor"] in ("plane offset", "eps / edge") + SENSOR_FACTORS:
         return METHODS if not quick or task["factor"] == "plane offset" else METHODS[:2] + METHODS[3:]
     return (("pulling", "embree"), ("finger", "embree"))
 
@@ -152,7 +139,7 @@ def _mesh_for(task):
         return meshes.load("bowl", resolution=32)
     if f == "islands/holes":
         return meshes.load(v)
-    if f == "noise":
+    if f in SENSOR_FACTORS:
         return meshes.load("fig18_overhangs")
     if f == "mesh defects":
         if v == "open":
@@ -204,10 +191,12 @@ def run_factor(task: dict) -> list[dict]:
             rows.append({**base, "method": f"pulling/{backend}", "slice": -1, "motions": 0,
                          "w3_soundness": np.nan, **out, "seconds": time.perf_counter() - t0})
         return rows
-    sigma = v * eps if f == "noise" else 0.0
     for slc in _slices(task, mesh, diag):
+        sensor = None
+        if f in SENSOR_FACTORS and v:
+            sensor = SensorModel.of_eps(eps, **{f: v}, seed=slc.index)
         for method, backend in _methods(task, quick):
-            r = _sense(slc, eps, method, backend, sigma, 5000)
+            r = _sense(slc, eps, method, backend, sensor, 5000)
             rows.append({**base, "method": f"{method}/{backend}", "slice": slc.index, **r})
     if f in ("resolution",) or f.startswith("rotation"):
         f1, cov, crashed, err, hit = _run3d(mesh, 3 if quick else 4, eps)

@@ -62,7 +62,8 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
     settings = SenseSettings(normals, count, res.first_eps, tol, config.backend,
                              config.max_motions, config.bootstrap, config.method,
                              float(config.noise), float(config.taxel), int(config.seed),
-                             float(config.friction))
+                             float(config.friction), float(config.torque_threshold),
+                             float(config.torque_noise))
 
     def sense(tasks):
         return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress)

@@ -45,6 +45,7 @@ class SenseSettings:
         (:mod:`core2d.sim.sensor`; 0: perfect sensing).
     seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
     friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`; 0: none).
+    torque_threshold, torque_noise : float -- the torque sensor's, in eps.
     """
 
     axes: tuple
@@ -59,12 +60,15 @@ class SenseSettings:
     taxel: float = 0.0
     seed: int = 0
     friction: float = 0.0
+    torque_threshold: float = 0.0
+    torque_noise: float = 0.0
 
     def sensor(self, family: int, index: int) -> SensorModel | None:
         """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
-        if not (self.noise or self.taxel):
+        if not (self.noise or self.taxel or self.torque_threshold or self.torque_noise):
             return None
-        return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed).reseeded(
+        return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed,
+                                  self.torque_threshold, self.torque_noise).reseeded(
             family, index)
 
     @property

@@ -2,7 +2,7 @@
 
 The sensing runs numba kernels compiled with ``cache=True``: core2d's ray engine, planner
 and visibility, and the Embree ray function of :mod:`slicer.contact.embree_direct`. The
-first run on a machine (or after their source changed) compiles them, about 20 s before
+first run on a machine (or after their source changed) compiles them, about 10 s before
 the first slice, so ``recon3d run`` says so first (:func:`cold_kernels`; the library
 itself prints nothing).
 
@@ -35,7 +35,7 @@ from slicer.contact import embree_direct
 
 __all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_kernels"]
 
-COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 20 s)…"
+COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 10 s)…"
 """What ``recon3d run`` prints (stderr, not with ``--quiet``) when :func:`cold_kernels`."""
 
 

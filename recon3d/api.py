@@ -15,7 +15,7 @@ import inspect
 import os
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -71,6 +71,7 @@ class Result:
     recon: Reconstruction
     metrics: dict
     warnings: list[str]
+    _blocks: Any = field(default=None, init=False, repr=False, compare=False)
 
     @property
     def slices(self) -> list[SliceRun]:
@@ -106,7 +107,13 @@ class Result:
         return surface_lines(self.metrics), chord_lines(self.metrics, shown)
 
     def blocks(self) -> Any:
-        """The ``scene.vtm`` multiblock (ground truth, surface, curves, headline)."""
+        """The ``scene.vtm`` multiblock (ground truth, surface, curves, headline), built on
+        the first call and kept (``save`` and ``plot`` draw the same scene)."""
+        if self._blocks is None:
+            self._blocks = self._build_blocks()
+        return self._blocks
+
+    def _build_blocks(self) -> Any:
         gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step,
                            self.surface)
         return scene.scene_blocks(gt, self.surface, self.slices,
@@ -160,7 +167,7 @@ class Result:
         coverage.png and slices.png into ``out`` (``png=False``: neither picture)."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
-                             self.blocks(), title=self.sensing.name, png=png,
+                             self.blocks, title=self.sensing.name, png=png,
                              slices=self.slices)
 
 

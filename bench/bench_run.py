@@ -128,9 +128,9 @@ def main(argv=None) -> int:
         print(f"after: commit {head}{' + uncommitted changes' if dirty else ''}"
               + (f"; {trees[0][0]}" if args.before else "")
               + f"; {args.slices} z-slices, --jobs 2, {repeat} run(s) each, medians", flush=True)
-        for tag, root in trees:  # compiled kernels from their cache before timing
-            run_once(root, "stepped_pyramid", tmp / "warm", ["--slices", "1", "--jobs", "1",
-                                                               "--no-png"])
+        for tag, root in trees:  # compiled kernels loaded (or built) before timing
+            run_once(root, scenes[0] if scenes else "fig18_overhangs", tmp / "warm",
+                     ["--slices", "2", "--jobs", "1", "--no-png"])
         cols = f"{'scene':18s} {'run s':>6s} {'sense s':>7s} {'ratio':>6s}"
         if args.before:
             cols += f" | {'before run s':>12s} {'sense s':>7s} {'ratio':>6s}  run speed-up  same"

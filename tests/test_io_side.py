@@ -13,7 +13,9 @@ import pytest
 import recon3d
 import recon3d.io.outputs as outputs
 import recon3d.viz.plot as plot
+from recon3d.io import without_timing
 from recon3d.io.side import Side
+from recon3d.spellings import make_config
 
 pytestmark = pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(),
                                 reason="needs fork")
@@ -119,3 +121,26 @@ def test_error_in_the_parent_stops_the_child_and_leaves_nothing(pocket, tmp_path
         pocket.save(tmp_path / "new")
     assert time.perf_counter() - t0 < 30 and not (tmp_path / "new").exists()
     assert not multiprocessing.active_children()  # the child was stopped, not left behind
+
+
+def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, monkeypatch):
+    import recon3d.api as api
+
+    config = make_config(slices=2, eps=pocket.sensing.eps, jobs=1)
+    res = api.execute(pocket.mesh, "fig17_pocket", config, scene=True)
+    assert without_timing(res.metrics) == without_timing(pocket.metrics)
+    here = api._coverage(res.mesh, res.sensing, res.recon)
+    assert res._coverage is not None
+    assert np.array_equal(res._coverage.vertices, here.vertices)
+    assert np.array_equal(res._coverage.faces, here.faces)
+    assert np.array_equal(res._coverage.face_attributes["coverage"],
+                          here.face_attributes["coverage"])
+    assert np.array_equal(res._coverage.vertex_attributes["distance"],
+                          here.vertex_attributes["distance"])
+
+    def again(*args):
+        raise AssertionError("the scene's ground truth computed twice")
+
+    monkeypatch.setattr(api, "_coverage", again)
+    assert res.blocks()["ground_truth"].n_cells == len(here.faces)
+    assert res.blocks() is res.blocks()  # built once: save and plot draw the same scene

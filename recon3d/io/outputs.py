@@ -4,6 +4,13 @@ A machine without OpenGL cannot render ``coverage.png``: the other files
 are still written and a ``RuntimeWarning`` says why the picture is missing.
 ``slices.png`` (every slice in 2D, :mod:`recon3d.viz.multiples`) needs no
 OpenGL: matplotlib's Agg draws it.
+
+Where the process can fork (:func:`recon3d.io.side.can_fork`), both pictures
+are drawn by a child (:class:`recon3d.io.side.Side`) that loads pyvista's
+plotting and draws ``slices.png`` while this process builds the scene, then
+renders the ``scene.vtm`` written here -- the same pixels -- while this
+process writes the other files: the two slow libraries load and draw on
+two cores.
 """
 from __future__ import annotations
 
@@ -85,13 +92,14 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     """
     staged = Staged(out, replaces=OUTPUTS)
     with staged as stage:
-        # coverage.png in a forked child: it loads pyvista's plotting while this process
-        # builds the scene, then draws the scene.vtm written here (the same picture) while
-        # this process writes the rest; without fork, all of it here, one after the other
+        # the pictures in a forked child: it loads pyvista's plotting and draws slices.png
+        # while this process builds the scene, then draws the scene.vtm written here as
+        # coverage.png (the same picture) while this process writes the rest; without
+        # fork, all of it here, one after the other
         side = None
         if png and can_fork():
             go = multiprocessing.get_context("fork").Event()
-            side = Side(_render_when_told, go, stage, title)
+            side = Side(_pictures_when_told, go, stage, title, sensing, metrics, slices)
         try:
             scene = blocks() if callable(blocks) else blocks
             scene.save(str(stage / "scene.vtm"))
@@ -102,21 +110,23 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
             write_motions(stage / "motions.csv", slices)
             ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
                           np.asarray(surface.face_attributes["label"]))
-            if png:
+            if png and side is None:
                 write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
-                if side is None:
-                    _render(scene, stage / "coverage.png", title)
-                else:
-                    side.result()
-                    side = None
+                _render(scene, stage / "coverage.png", title)
+            elif side is not None:
+                side.result()
+                side = None
         finally:
             if side is not None:  # an error here: the child's picture is thrown away too
                 side.stop()
     return staged.written
 
 
-def _render_when_told(go, stage: Path, title: str) -> None:
-    """In the child: load pyvista's plotting, wait for ``stage/scene.vtm``, render it."""
+def _pictures_when_told(go, stage: Path, title: str, sensing: dict, metrics: dict,
+                        slices) -> None:
+    """In the child: load pyvista's plotting, draw ``slices.png``, wait for
+    ``stage/scene.vtm`` (``go``), render it as ``coverage.png``."""
     plot.load_plotting()
+    write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
     go.wait()
     _render(libs.pyvista().read(str(stage / "scene.vtm")), stage / "coverage.png", title)

@@ -76,7 +76,10 @@ def _pid_png(blocks, path, title=""):
 @pytest.fixture
 def forking(monkeypatch):
     """The writer forks (the stand-ins below touch no OpenGL, whatever this process did)."""
+    import recon3d.api as api
+
     monkeypatch.setattr(outputs, "can_fork", lambda: True)
+    monkeypatch.setattr(api, "can_fork", lambda: True)
 
 
 def test_picture_is_drawn_in_a_child_from_the_written_scene(pocket, tmp_path, monkeypatch,
@@ -123,7 +126,8 @@ def test_error_in_the_parent_stops_the_child_and_leaves_nothing(pocket, tmp_path
     assert not multiprocessing.active_children()  # the child was stopped, not left behind
 
 
-def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, monkeypatch):
+def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, monkeypatch,
+                                                                        forking):
     import recon3d.api as api
 
     config = make_config(slices=2, eps=pocket.sensing.eps, jobs=1)

@@ -15,7 +15,7 @@ import inspect
 import os
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +28,7 @@ from recon3d.config import RunConfig, validate
 from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import write_outputs
+from recon3d.io.side import Side, can_fork
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
 from recon3d.score.evaluate import contour_cloud, coverage_mesh
@@ -71,6 +72,8 @@ class Result:
     recon: Reconstruction
     metrics: dict
     warnings: list[str]
+    _blocks: Any = field(default=None, init=False, repr=False, compare=False)
+    _coverage: trimesh.Trimesh | None = field(default=None, repr=False, compare=False)
 
     @property
     def slices(self) -> list[SliceRun]:
@@ -106,9 +109,15 @@ class Result:
         return surface_lines(self.metrics), chord_lines(self.metrics, shown)
 
     def blocks(self) -> Any:
-        """The ``scene.vtm`` multiblock (ground truth, surface, curves, headline)."""
-        gt = coverage_mesh(self.mesh, contour_cloud(self.sensing.families), 2 * self.recon.step,
-                           self.surface)
+        """The ``scene.vtm`` multiblock (ground truth, surface, curves, headline), built on
+        the first call and kept (``save`` and ``plot`` draw the same scene)."""
+        if self._blocks is None:
+            self._blocks = self._build_blocks()
+        return self._blocks
+
+    def _build_blocks(self) -> Any:
+        gt = self._coverage if self._coverage is not None else _coverage(self.mesh, self.sensing,
+                                                                         self.recon)
         return scene.scene_blocks(gt, self.surface, self.slices,
                                   headline=[f"{self.sensing.name}: slices "
                                             f"{slicing_text(self.metrics)}"] + sum(self.headline(2), []),
@@ -160,7 +169,7 @@ class Result:
         coverage.png and slices.png into ``out`` (``png=False``: neither picture)."""
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
-                             self.blocks(), title=self.sensing.name, png=png,
+                             self.blocks, title=self.sensing.name, png=png,
                              slices=self.slices)
 
 
@@ -201,12 +210,26 @@ def load_input(source: Source, drop_nonfinite: bool = False
     return mesh, name, notes
 
 
+def _coverage(mesh: trimesh.Trimesh, sensed: MeshRun, recon: Reconstruction) -> trimesh.Trimesh:
+    """The ground truth of the scene, coloured (:func:`recon3d.score.evaluate.coverage_mesh`)."""
+    return coverage_mesh(mesh, contour_cloud(sensed.families), 2 * recon.step, recon.surface)
+
+
+def _coverage_arrays(mesh, sensed, recon) -> tuple:
+    """:func:`_coverage` as plain arrays (what a side process sends back)."""
+    gt = _coverage(mesh, sensed, recon)
+    return (gt.vertices, gt.faces, gt.face_attributes["coverage"],
+            gt.vertex_attributes.get("distance"))
+
+
 def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence[str] = (),
             progress: Callable[[SliceRun], None] | None = None,
-            stage: Callable[[str], None] | None = None) -> Result:
+            stage: Callable[[str], None] | None = None, scene: bool = False) -> Result:
     """Sense, reconstruct and score a checked mesh and config (see :func:`run`).
 
     stage : callable(str), optional -- told when reconstruction and scoring start.
+    scene : bool -- the scene's coloured ground truth will be wanted (``save``): where a
+        process can fork, it is computed beside the scores, on another core.
     """
     notes = list(notes)
     sensed = sense_mesh(mesh, name, config, progress)
@@ -216,9 +239,22 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     recon = reconstruct(sensed)
     if stage is not None:
         stage("scoring")
-    surface, info = score(sensed, recon)
-    doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
-    return Result(mesh, sensed, recon, doc, notes)
+    side = Side(_coverage_arrays, mesh, sensed, recon) if scene and can_fork() else None
+    try:
+        surface, info = score(sensed, recon)
+        doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
+        gt = None
+        if side is not None:
+            v, f, cov, dist = side.result()
+            side = None
+            gt = trimesh.Trimesh(v, f, process=False)
+            gt.face_attributes["coverage"] = cov
+            if dist is not None:
+                gt.vertex_attributes["distance"] = dist
+    finally:
+        if side is not None:
+            side.stop()
+    return Result(mesh, sensed, recon, doc, notes, _coverage=gt)
 
 
 def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,

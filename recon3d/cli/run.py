@@ -122,7 +122,7 @@ def _run(args, config, mesh, name, notes):
             bar.set_description(f"{what} {name}")
 
     try:
-        result = execute(mesh, name, config, progress=progress, stage=stage)
+        result = execute(mesh, name, config, progress=progress, stage=stage, scene=True)
         if bar is not None:
             bar.set_description(f"writing {name}")
         files = result.save(args.out, png=not args.no_png)

@@ -4,10 +4,18 @@ A machine without OpenGL cannot render ``coverage.png``: the other files
 are still written and a ``RuntimeWarning`` says why the picture is missing.
 ``slices.png`` (every slice in 2D, :mod:`recon3d.viz.multiples`) needs no
 OpenGL: matplotlib's Agg draws it.
+
+Where the process can fork (:func:`recon3d.io.side.can_fork`), both pictures
+are drawn by a child (:class:`recon3d.io.side.Side`) that loads pyvista's
+plotting and draws ``slices.png`` while this process builds the scene, then
+renders the ``scene.vtm`` written here -- the same pixels -- while this
+process writes the other files: the two slow libraries load and draw on
+two cores.
 """
 from __future__ import annotations
 
 import json
+import multiprocessing
 import warnings
 from pathlib import Path
 
@@ -16,8 +24,9 @@ import trimesh
 
 from recon3d.io import ply
 from recon3d.io.motions import write_motions
+from recon3d.io.side import Side, can_fork
 from recon3d.io.staged import Staged
-from recon3d.viz import plot
+from recon3d.viz import libs, plot
 from recon3d.viz.multiples import save_multiples
 from recon3d.viz.sliceview import slice_views
 
@@ -70,7 +79,8 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     out : path -- created if missing (and removed again if writing fails).
     sensing, metrics : dict -- the JSON documents.
     surface : trimesh.Trimesh with ``face_attributes['label']``.
-    blocks : pyvista.MultiBlock -- :func:`recon3d.viz.blocks.scene_blocks`.
+    blocks : pyvista.MultiBlock, or a callable returning one --
+        :func:`recon3d.viz.blocks.scene_blocks` (a callable is called once, here).
     png : bool -- render ``coverage.png`` (needs an OpenGL context; see module doc) and
         ``slices.png``.
     slices : list of recon3d.records.SliceRun -- their motion logs make ``motions.csv``,
@@ -82,13 +92,41 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     """
     staged = Staged(out, replaces=OUTPUTS)
     with staged as stage:
-        write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
-        write_json(stage / "metrics.json", metrics)
-        write_motions(stage / "motions.csv", slices)
-        ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
-                      np.asarray(surface.face_attributes["label"]))
-        blocks.save(str(stage / "scene.vtm"))
-        if png:
-            _render(blocks, stage / "coverage.png", title)
-            write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
+        # the pictures in a forked child: it loads pyvista's plotting and draws slices.png
+        # while this process builds the scene, then draws the scene.vtm written here as
+        # coverage.png (the same picture) while this process writes the rest; without
+        # fork, all of it here, one after the other
+        side = None
+        if png and can_fork():
+            go = multiprocessing.get_context("fork").Event()
+            side = Side(_pictures_when_told, go, stage, title, sensing, metrics, slices)
+        try:
+            scene = blocks() if callable(blocks) else blocks
+            scene.save(str(stage / "scene.vtm"))
+            if side is not None:
+                go.set()
+            write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
+            write_json(stage / "metrics.json", metrics)
+            write_motions(stage / "motions.csv", slices)
+            ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
+                          np.asarray(surface.face_attributes["label"]))
+            if png and side is None:
+                write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
+                _render(scene, stage / "coverage.png", title)
+            elif side is not None:
+                side.result()
+                side = None
+        finally:
+            if side is not None:  # an error here: the child's picture is thrown away too
+                side.stop()
     return staged.written
+
+
+def _pictures_when_told(go, stage: Path, title: str, sensing: dict, metrics: dict,
+                        slices) -> None:
+    """In the child: load pyvista's plotting, draw ``slices.png``, wait for
+    ``stage/scene.vtm`` (``go``), render it as ``coverage.png``."""
+    plot.load_plotting()
+    write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
+    go.wait()
+    _render(libs.pyvista().read(str(stage / "scene.vtm")), stage / "coverage.png", title)

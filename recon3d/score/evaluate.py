@@ -126,14 +126,26 @@ class ContourCloud:
 
 
 def _on_holes(srun, points) -> np.ndarray:
-    """(m,) bool: which (m, 2) reference samples of a slice lie nearest a hole loop."""
+    """(m,) bool: which (m, 2) reference samples of a slice lie nearest a hole loop.
+
+    The nearest loop is the one of the nearest loop segment (one STRtree query for all
+    samples); between loops at the same distance, the first, as an argmin over loops."""
     holes = np.asarray(srun.slice.holes, dtype=bool)
     if not holes.any() or not len(points):
         return np.zeros(len(points), dtype=bool)
-    where = shapely.points(np.asarray(points, dtype=np.float64))
-    d = np.array([shapely.distance(where, shapely.LinearRing(np.asarray(lp, dtype=np.float64)))
-                  for lp in srun.slice.loops])  # (loops, m)
-    return holes[np.argmin(d, axis=0)]
+    segs, owner = [], []
+    for k, lp in enumerate(srun.slice.loops):
+        ring = np.asarray(lp, dtype=np.float64).reshape(-1, 2)
+        ring = np.vstack([ring, ring[:1]])  # closed, as a LinearRing
+        segs.append(np.stack([ring[:-1], ring[1:]], axis=1))
+        owner.append(np.full(len(ring) - 1, k))
+    owner = np.concatenate(owner)
+    tree = shapely.STRtree(shapely.linestrings(np.concatenate(segs)))
+    at, seg = tree.query_nearest(shapely.points(np.asarray(points, dtype=np.float64)),
+                                 all_matches=True)
+    nearest = np.full(len(points), len(holes))
+    np.minimum.at(nearest, at, owner[seg])
+    return holes[nearest]
 
 
 def contour_cloud(families: list[Family]) -> ContourCloud:

@@ -15,7 +15,7 @@ import types
 import numpy as np
 import trimesh
 
-__all__ = ["pyvista", "polydata", "pyplot", "ticker", "collections", "lines", "pil_image"]
+__all__ = ["pyvista", "pyvista_plotting", "polydata", "pyplot", "ticker", "collections", "lines", "pil_image"]
 
 
 def pyvista() -> types.ModuleType:
@@ -23,6 +23,13 @@ def pyvista() -> types.ModuleType:
     import pyvista as pv  # lazy: slow to load, not needed by every run
 
     return pv
+
+
+def pyvista_plotting() -> types.ModuleType:
+    """pyvista.plotting (its renderers: slow to load, only pictures need it)."""
+    import pyvista.plotting as plotting  # lazy: only a picture needs it
+
+    return plotting
 
 
 def polydata(mesh: trimesh.Trimesh):

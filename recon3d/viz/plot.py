@@ -27,7 +27,8 @@ from recon3d.viz import libs
 from recon3d.viz.view import fit_view
 
 __all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "DISTANCE_COLORS",
-           "DISTANCE_MAX", "WIDTH", "HEADLINE_ROWS", "headline_rows", "hex_rgb", "prepare_offscreen", "coverage_plotter",
+           "load_plotting", "DISTANCE_MAX", "WIDTH", "HEADLINE_ROWS", "headline_rows", "hex_rgb",
+           "prepare_offscreen", "coverage_plotter",
            "save_png", "has_display"]
 
 LABEL_COLORS = {1: "#3a7fd5", 2: "#4daf4a", 3: "#e41a1c", 4: "#d4d4d4", 5: "#c9a36b"}
@@ -85,6 +86,12 @@ def prepare_offscreen() -> None:
     """Without a display, ask VTK for an EGL window (before VTK renders anything)."""
     if not has_display():
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+
+def load_plotting() -> None:
+    """Import pyvista's plotting (its slowest part) ahead of drawing, off screen."""
+    prepare_offscreen()
+    libs.pyvista_plotting()
 
 
 def hex_rgb(color: str) -> tuple[float, float, float]:

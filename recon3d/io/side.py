@@ -1,0 +1,92 @@
+"""One function in a forked child while this process goes on (internal).
+
+A run's files are written on one core while the other idles: the sensing pool
+has finished. :class:`Side` forks a child that runs one function on what this
+process holds (nothing is pickled but the function's small return value) and
+hands back its result, its warnings re-issued here, or its error as a
+``RuntimeError``. The child ignores SIGINT and SIGHUP (the parent decides);
+:meth:`Side.stop` ends it when the parent gives up early. Where a process
+cannot fork, :func:`can_fork` is False and the caller runs the function itself.
+
+>>> side = Side(sum, [1, 2, 3]) if can_fork() else None
+>>> side.result() if side else 6
+6
+"""
+from __future__ import annotations
+
+import multiprocessing
+import signal
+import sys
+import traceback
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["Side", "can_fork"]
+
+_GL = "vtkmodules.vtkRenderingOpenGL2"
+"""Loaded once a render window may exist: a forked child must not share its context."""
+
+
+def can_fork() -> bool:
+    """True where a child can be forked safely: POSIX fork, no OpenGL context made yet."""
+    return "fork" in multiprocessing.get_all_start_methods() and _GL not in sys.modules
+
+
+def _child(conn, fn: Callable, args: tuple) -> None:
+    for sig in (signal.SIGINT, getattr(signal, "SIGHUP", None)):
+        if sig is not None:
+            signal.signal(sig, signal.SIG_IGN)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            value = fn(*args)
+        notes = [(str(w.message), w.category) for w in caught]
+        conn.send(("ok", value, notes))
+    except BaseException as exc:  # reported to the parent, which raises it
+        conn.send(("error", "".join(traceback.format_exception_only(exc)).strip(), []))
+    finally:
+        conn.close()
+
+
+class Side:
+    """``fn(*args)`` running in a forked child from construction on.
+
+    Parameters
+    ----------
+    fn : callable -- runs in the child; its return value must pickle.
+    *args -- passed as they are (inherited by the fork, not pickled).
+    """
+
+    def __init__(self, fn: Callable, *args: Any):
+        ctx = multiprocessing.get_context("fork")
+        self._conn, send = ctx.Pipe(duplex=False)
+        self._proc = ctx.Process(target=_child, args=(send, fn, args), daemon=True)
+        self._proc.start()
+        send.close()
+
+    def result(self) -> Any:
+        """Wait for the child: its return value (its warnings re-issued here).
+
+        Raises RuntimeError when it raised or died."""
+        try:
+            status, value, notes = self._conn.recv()
+        except EOFError:
+            self._proc.join()
+            raise RuntimeError(f"side process ended without a result "
+                               f"(exit code {self._proc.exitcode})") from None
+        finally:
+            self._conn.close()
+        self._proc.join()
+        if status != "ok":
+            raise RuntimeError(value)
+        for message, category in notes:
+            warnings.warn(message, category, stacklevel=2)
+        return value
+
+    def stop(self) -> None:
+        """End the child if it still runs (the parent is giving up) and reap it."""
+        if self._proc.is_alive():
+            self._proc.terminate()
+        self._proc.join()
+        self._conn.close()

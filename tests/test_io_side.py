@@ -1,0 +1,150 @@
+"""The forked side process of a run's files (recon3d.io.side) and the writer that uses it:
+coverage.png drawn by a child from the scene.vtm written by the parent, the same files
+and picture as one process draws, errors and warnings of the child carried to the parent."""
+import multiprocessing
+import os
+import signal
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+import recon3d
+import recon3d.io.outputs as outputs
+import recon3d.viz.plot as plot
+from recon3d.io import without_timing
+from recon3d.io.side import Side
+from recon3d.spellings import make_config
+
+pytestmark = pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(),
+                                reason="needs fork")
+
+
+def _warn_and_return(x):
+    warnings.warn("from the child", RuntimeWarning)
+    return x * 2, os.getpid()
+
+
+def _fail():
+    raise ValueError("bad thing")
+
+
+def _die():
+    os.kill(os.getpid(), signal.SIGKILL)
+
+
+def _sleep():
+    time.sleep(60)
+
+
+def test_side_returns_its_value_from_another_process_and_reissues_warnings():
+    side = Side(_warn_and_return, 21)
+    with pytest.warns(RuntimeWarning, match="from the child"):
+        value, pid = side.result()
+    assert value == 42 and pid != os.getpid()
+
+
+def test_side_error_and_death_become_runtime_errors():
+    with pytest.raises(RuntimeError, match="ValueError: bad thing"):
+        Side(_fail).result()
+    with pytest.raises(RuntimeError, match="without a result"):
+        Side(_die).result()
+
+
+def test_stop_ends_a_running_child():
+    side = Side(_sleep)
+    t0 = time.perf_counter()
+    side.stop()
+    assert time.perf_counter() - t0 < 10 and not side._proc.is_alive()
+
+
+@pytest.fixture(scope="module")
+def pocket():
+    import meshes
+
+    mesh = meshes.load("fig17_pocket")
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0))) / 50
+    return recon3d.run("fig17_pocket", slices=2, eps=eps, jobs=1)
+
+
+def _pid_png(blocks, path, title=""):
+    """A stand-in for save_png: which process drew, and from what (no OpenGL needed)."""
+    path.write_text(f"{os.getpid()} {type(blocks).__name__} {blocks.n_blocks}")
+
+
+@pytest.fixture
+def forking(monkeypatch):
+    """The writer forks (the stand-ins below touch no OpenGL, whatever this process did)."""
+    import recon3d.api as api
+
+    monkeypatch.setattr(outputs, "can_fork", lambda: True)
+    monkeypatch.setattr(api, "can_fork", lambda: True)
+
+
+def test_picture_is_drawn_in_a_child_from_the_written_scene(pocket, tmp_path, monkeypatch,
+                                                            forking):
+    monkeypatch.setattr(plot, "save_png", _pid_png)
+    monkeypatch.setattr(plot, "load_plotting", lambda: None)
+    pocket.save(tmp_path / "fork")
+    pid, kind, n = (tmp_path / "fork" / "coverage.png").read_text().split()
+    assert int(pid) != os.getpid() and kind == "MultiBlock" and int(n) == 3
+    monkeypatch.setattr(outputs, "can_fork", lambda: False)  # one process: drawn here
+    pocket.save(tmp_path / "one")
+    pid = (tmp_path / "one" / "coverage.png").read_text().split()[0]
+    assert int(pid) == os.getpid()
+    for name in ("sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
+                 "slices.png"):
+        assert (tmp_path / "fork" / name).read_bytes() == (tmp_path / "one" / name).read_bytes()
+
+
+def test_failed_picture_in_the_child_warns_here_and_writes_the_rest(pocket, tmp_path,
+                                                                     monkeypatch, forking):
+    def no_gl(*args, **kwargs):
+        raise RuntimeError("no EGL")
+
+    monkeypatch.setattr(plot, "save_png", no_gl)
+    monkeypatch.setattr(plot, "load_plotting", lambda: None)
+    with pytest.warns(RuntimeWarning, match="coverage.png not written: RuntimeError: no EGL"):
+        files = pocket.save(tmp_path / "o")
+    assert "coverage.png" not in {p.name for p in files} and "slices.png" in {p.name
+                                                                                for p in files}
+
+
+def test_error_in_the_parent_stops_the_child_and_leaves_nothing(pocket, tmp_path, monkeypatch,
+                                                                  forking):
+    monkeypatch.setattr(plot, "load_plotting", lambda: time.sleep(60))
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(outputs, "write_motions", broken)
+    t0 = time.perf_counter()
+    with pytest.raises(OSError, match="disk full"):
+        pocket.save(tmp_path / "new")
+    assert time.perf_counter() - t0 < 30 and not (tmp_path / "new").exists()
+    assert not multiprocessing.active_children()  # the child was stopped, not left behind
+
+
+def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, monkeypatch,
+                                                                        forking):
+    import recon3d.api as api
+
+    config = make_config(slices=2, eps=pocket.sensing.eps, jobs=1)
+    res = api.execute(pocket.mesh, "fig17_pocket", config, scene=True)
+    assert without_timing(res.metrics) == without_timing(pocket.metrics)
+    here = api._coverage(res.mesh, res.sensing, res.recon)
+    assert res._coverage is not None
+    assert np.array_equal(res._coverage.vertices, here.vertices)
+    assert np.array_equal(res._coverage.faces, here.faces)
+    assert np.array_equal(res._coverage.face_attributes["coverage"],
+                          here.face_attributes["coverage"])
+    assert np.array_equal(res._coverage.vertex_attributes["distance"],
+                          here.vertex_attributes["distance"])
+
+    def again(*args):
+        raise AssertionError("the scene's ground truth computed twice")
+
+    monkeypatch.setattr(api, "_coverage", again)
+    assert res.blocks()["ground_truth"].n_cells == len(here.faces)
+    assert res.blocks() is res.blocks()  # built once: save and plot draw the same scene

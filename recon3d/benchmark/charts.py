@@ -233,6 +233,8 @@ def claims_chart(rows, path) -> None:
     fig.suptitle("Pulling against pushing under Coulomb friction at the tip, middle z-slice "
                  "per case\n(a push with the rod inside the friction cone jams; pulls slide; "
                  "overlapping lines are shifted slightly in mu)")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 def sensor_chart(rows, path, factors=("noise", "taxel")) -> None:

@@ -210,8 +210,8 @@ def mesh_of(man: manifold3d.Manifold, owners: dict) -> trimesh.Trimesh:
         if int(oid) in owners:
             sl = slice(run[k], run[k + 1])
             labels[sl] = owners[int(oid)][fid[sl]]
-    mesh = trimesh.Trimesh(np.asarray(out.vert_properties, dtype=np.float64)[:, :3], tri,
-                           process=False)
+    verts = np.array(out.vert_properties, dtype=np.float64)[:, :3]  # a copy: no view
+    mesh = trimesh.Trimesh(verts, tri, process=False)  # keeps the Mesh64 alive at exit
     mesh.face_attributes["label"] = labels
     return mesh
 
@@ -254,7 +254,7 @@ def fuse_weighted(fields, step: float, settings: FusionSettings = FusionSettings
     tri = np.asarray(out.tri_verts, dtype=np.int64)
     if len(tri) == 0:
         return empty_surface()
-    verts = np.asarray(out.vert_properties, dtype=np.float64)[:, :3]
+    verts = np.array(out.vert_properties, dtype=np.float64)[:, :3]  # a copy (as above)
     labels = labels[np.asarray(out.face_id, dtype=np.int64)]
     on_cut = np.abs(_slab_distance(fields, verts)) < 1e-2 * step
     labels[on_cut[tri].all(axis=1)] = 5  # the slab ends: caps

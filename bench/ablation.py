@@ -31,7 +31,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 
-from bench.bench_planner import ROOT, _cases, _run
+from bench.bench_planner import ROOT, _cases, _run, add_case_arguments
 from core2d.planner.flow import PAPER, PULLING
 
 __all__ = ["VARIANTS", "DECISIONS", "summary", "markdown", "main"]
@@ -111,13 +111,7 @@ def main(argv=None) -> int:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true",
                    help="2 outlines per kind, 1 slice per scene (overrides --per-kind/--slices)")
-    p.add_argument("--per-kind", type=int, default=8, help="outlines per kind (default 8)")
-    p.add_argument("--kinds", nargs="*", default=None, help="outline kinds (default all)")
-    p.add_argument("--no-scenes", dest="scenes", action="store_false", help="skip built-in scenes")
-    p.add_argument("--slices", type=int, default=3, help="z slices per built-in scene (default 3)")
-    p.add_argument("--meshes", action="store_true", help="also ../shared/meshes")
-    p.add_argument("--mesh-slices", type=int, default=8, help="z slices per real mesh (default 8)")
-    p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
+    add_case_arguments(p)
     p.add_argument("--variants", default=",".join(VARIANTS),
                    help="comma-separated subset of " + ", ".join(ALL))
     p.add_argument("--decisions", action="store_true",

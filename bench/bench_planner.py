@@ -172,8 +172,8 @@ def markdown(summary) -> str:
     return "\n".join(rows)
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_case_arguments(p) -> None:
+    """The flags that choose the case set (shared with ``bench.ablation``)."""
     p.add_argument("--per-kind", type=int, default=8, help="outlines per kind (default 8)")
     p.add_argument("--kinds", nargs="*", default=None, help="outline kinds (default all)")
     p.add_argument("--no-scenes", dest="scenes", action="store_false", help="skip built-in scenes")
@@ -181,6 +181,11 @@ def main(argv=None):
     p.add_argument("--meshes", action="store_true", help="also ../shared/meshes")
     p.add_argument("--mesh-slices", type=int, default=8, help="z slices per real mesh (default 8)")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_case_arguments(p)
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--json", help="write every row to this file")
     p.add_argument("--markdown", action="store_true", help="print the summary as a markdown table")

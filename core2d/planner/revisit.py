@@ -7,7 +7,9 @@ say that the recorded postures leave no pass, not that none exists. Once
 nothing else is left, every deferred area A_iB_i is looked at again against
 the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
-1. C_A^B has meanwhile been traced through other areas -> closed as traced.
+1. C_A^B has meanwhile been traced through other areas -> closed as traced;
+   so is a lid lying along contour recorded from B_i to A_i (a traced wall
+   read backwards, :func:`reversed_lid`).
 2. The lid could be a W3 lid only if it crosses no recorded contour
    (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
    contour farther than eps/2 from its touched ends (:func:`proof_lines`)
@@ -54,6 +56,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+import shapely
 
 from core2d.planner.areas import Area
 from core2d.planner.regions import Posture, near_probe
@@ -200,6 +203,25 @@ def on_recorded(run: Exploration, area) -> bool:
     return all(run.known.distance(p) <= run.res.near for p in pts)
 
 
+def reversed_lid(run: Exploration, area) -> bool:
+    """Does the lid A_iB_i lie on contour the robot recorded from B_i to A_i?
+
+    A split at a contact on the far wall of a slit (Case 2-2, P_1st on the
+    wall facing the one traced) can make a child whose lid runs along a
+    traced wall, read backwards: the chain of pieces leads from B_i to A_i
+    within eps/2 of the lid (Hausdorff distance), and none from A_i to B_i.
+    Its C_A^B (from A_i along the pieces) is then the rest of the loop, which
+    the other areas hold; nothing lies behind the lid itself (G_i between the
+    lid and the wall is narrower than eps/2, §3.1), so no pass can find
+    anything and the area would only report an unknown chord over traced
+    contour. It is closed as traced."""
+    chain = run.known.chain(area.b, area.a, run.res.tip_zone)
+    if chain is None or len(chain) < 2:
+        return False
+    lid = shapely.linestrings(np.stack([area.a, area.b]))
+    return bool(shapely.hausdorff_distance(lid, shapely.linestrings(chain)) <= run.res.tip_zone)
+
+
 def revisit_one(run: Exploration, area):
     """Look at one deferred area again (steps 1-3, 5 of the module doc).
 
@@ -210,6 +232,8 @@ def revisit_one(run: Exploration, area):
         return run.close(area, "traced", "C_A^B traced through other areas")
     if on_recorded(run, area):
         return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")
+    if reversed_lid(run, area):
+        return run.close(area, "traced", "the lid lies on contour recorded from B to A")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
     if not lines and candidate:

@@ -28,6 +28,7 @@ contoured at 0 with VTK and checked and cut with manifold3d.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import manifold3d
 import numpy as np
@@ -54,10 +55,13 @@ class FusionSettings:
         near its walls only (fading over ``extend_scale`` grid steps inside), falling off as
         1 / (1 + (s / extend_scale)^2) at ``s`` grid steps beyond: it shapes the walls there,
         the family that sees the end decides where the part ends.
-    explained : bool -- a family's empty weighs fully against another family's solid only as
-        far as it contradicts that solid on its own slice planes
-        (:mod:`recon3d.surface.support`); elsewhere its weight is capped at ``cap`` x the
-        solid family's weight. ``grow``: the contradiction's in-plane growth, grid steps.
+    explained : bool -- a family's empty weighs fully against another family's *sensed*
+        solid only as far as its own slice planes contradict that solid
+        (:mod:`recon3d.surface.support`); elsewhere its weight is at most ``cap`` x the solid
+        family's weight. ``grow``: the contradiction's in-plane growth (grid steps).
+        Beyond a family's slab its end slice extended counts as its solid for this rule,
+        fading as 1 / (1 + (s / ``reach``)^2) in the contradiction and as
+        1 / (1 + (s / ``solid_reach``)^2) as the solid that caps (``s`` grid steps beyond).
     """
 
     power: float = 2.0
@@ -66,8 +70,10 @@ class FusionSettings:
     extend: float = 0.1
     extend_scale: float = 4.0
     explained: bool = True
-    cap: float = 0.5
+    cap: float = 0.03
     grow: float = 2.0
+    reach: float = 4.0
+    solid_reach: float = 16.0
 
 
 def empty_surface() -> trimesh.Trimesh:
@@ -185,14 +191,16 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
     vals, wgts = [], []
     for ff in fields:
         others = [o for o in fields if o is not ff] if settings.explained else []
-        extra = ((contradiction(ff, others, value_in_slab, settings.grow), sensed_solid(ff))
+        sample = partial(value_in_slab, scale=settings.reach)
+        extra = ((contradiction(ff, others, sample, settings.grow), sensed_solid(ff))
                  if others else ())
         v, c, *ks = resample(ff, pts, settings.outside, settings.extend,
                              settings.extend_scale, extra)
         vals.append(np.clip(v, -tc, tc))
         wgt = c.astype(np.float64) ** settings.power
         k, sensed = (np.clip(ks[0], 0, 1), np.clip(ks[1], 0, 1)) if ks else (0.0, 0.0)
-        wgts.append((wgt, k, np.where(v > 0, sensed, 0.0)))
+        reach = value_in_slab(ff, pts, settings.solid_reach)[1] if ks else 0.0
+        wgts.append((wgt, k, np.where(v > 0, sensed * reach, 0.0)))
     num = np.zeros(len(pts))
     den = np.zeros(len(pts))
     for j, (v, (wgt, k, _)) in enumerate(zip(vals, wgts)):

@@ -11,7 +11,13 @@ agree there. The fused field is
     F(x) = sum_f c_f(x)^p F_f(x) / sum_f c_f(x)^p      (p = ``power``, 2)
 
 with every ``F_f`` clipped to the smallest truncation of the families (a family with wider
-gaps must not outvote the others by magnitude). Beyond f's slab ``F_f`` is its end slice
+gaps must not outvote the others by magnitude). **An empty a family did not see yields to a
+sensed solid** (``FusionSettings.explained``, :mod:`recon3d.surface.support`): where ``F_f < 0``
+and another family ``g`` has a *sensed* solid (inside its region behind a traced W1/W2 wall,
+not closed by a W3 lid, an unknown chord or a bridge), ``f``'s weight counts fully only as far
+as ``f``'s own slice planes showed empty where ``g`` says solid (the contradiction, blended
+between ``f``'s planes, so it falls with the distance to ``f``'s nearest plane in units of its
+slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Beyond f's slab ``F_f`` is its end slice
 extended, with a weight only near that slice's walls (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of
 the slabs (faces on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
 
@@ -176,6 +182,22 @@ def _slab_distance(fields, pts: np.ndarray) -> np.ndarray:
     return out
 
 
+def _family_terms(ff, fields, pts: np.ndarray, settings: FusionSettings):
+    """One family at world points (n, 3): field value, weight c^power, the contradiction
+    supporting its empty and its sensed solid share (both 0 without ``explained``), (n,) each."""
+    others = [o for o in fields if o is not ff] if settings.explained else []
+    extra = ((contradiction(ff, others, partial(value_in_slab, scale=settings.reach),
+                            settings.grow), sensed_solid(ff)) if others else ())
+    v, c, *ks = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale,
+                         extra)
+    wgt = c.astype(np.float64) ** settings.power
+    if not ks:
+        return v, wgt, np.zeros(len(pts)), np.zeros(len(pts))
+    reach = value_in_slab(ff, pts, settings.solid_reach)[1]
+    solid = np.where(v > 0, np.clip(ks[1], 0, 1) * reach, 0.0)
+    return v, wgt, np.clip(ks[0], 0, 1), solid
+
+
 def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
                 ) -> tuple[list[np.ndarray], np.ndarray]:
     """World grid axes (x, y, z) and the fused field (module doc), shape (nz, ny, nx).
@@ -188,25 +210,17 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
     gz, gy, gx = np.meshgrid(zs, ys, xs, indexing="ij")
     pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
     tc = min(ff.grid.truncation for ff in fields)
-    vals, wgts = [], []
+    vals, parts = [], []
     for ff in fields:
-        others = [o for o in fields if o is not ff] if settings.explained else []
-        sample = partial(value_in_slab, scale=settings.reach)
-        extra = ((contradiction(ff, others, sample, settings.grow), sensed_solid(ff))
-                 if others else ())
-        v, c, *ks = resample(ff, pts, settings.outside, settings.extend,
-                             settings.extend_scale, extra)
+        v, wgt, k, solid = _family_terms(ff, fields, pts, settings)
         vals.append(np.clip(v, -tc, tc))
-        wgt = c.astype(np.float64) ** settings.power
-        k, sensed = (np.clip(ks[0], 0, 1), np.clip(ks[1], 0, 1)) if ks else (0.0, 0.0)
-        reach = value_in_slab(ff, pts, settings.solid_reach)[1] if ks else 0.0
-        wgts.append((wgt, k, np.where(v > 0, sensed * reach, 0.0)))
+        parts.append((wgt, k, solid))
     num = np.zeros(len(pts))
     den = np.zeros(len(pts))
-    for j, (v, (wgt, k, _)) in enumerate(zip(vals, wgts)):
+    for j, (v, (wgt, k, _)) in enumerate(zip(vals, parts)):
         if settings.explained and len(fields) > 1:  # an unexplained empty yields to a solid
             capped = wgt
-            for i, (wo, _, so) in enumerate(wgts):  # so: another family's sensed solid
+            for i, (wo, _, so) in enumerate(parts):  # so: another family's sensed solid
                 if i != j:
                     capped = (1 - so) * capped + so * np.minimum(capped, settings.cap * wo)
             wgt = np.where(v < 0, k * wgt + (1 - k) * capped, wgt)

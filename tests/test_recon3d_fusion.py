@@ -258,7 +258,8 @@ def test_space_closed_by_a_lid_is_not_a_sensed_solid():
     grid = family_grid(regions, [0.0, 1.0], 0.25)
     vol, conf = family_volume(regions, grid, confidence=True)
     planes = tuple(slicer.slice_mesh(trimesh.creation.box((20.0, 20.0, 20.0)), "z", 2))
-    solid = sensed_solid(FamilyField(grid, vol, conf, tuple(p.plane for p in planes), tuple(regions)))
+    field = FamilyField(grid, vol, conf, tuple(p.plane for p in planes), tuple(regions))
+    solid = sensed_solid(field)
     at = lambda x_, y_: solid[grid.slice_layer(0), int(round((y_ - grid.y0) / grid.step)),
                               int(round((x_ - grid.x0) / grid.step))]
     assert at(1.0, 5.0) == 1.0  # in the cup's wall: W1 on both sides

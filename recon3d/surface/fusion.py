@@ -17,9 +17,10 @@ and another family ``g`` has a *sensed* solid (inside its region behind a traced
 not closed by a W3 lid, an unknown chord or a bridge), ``f``'s weight counts fully only as far
 as ``f``'s own slice planes showed empty where ``g`` says solid (the contradiction, blended
 between ``f``'s planes, so it falls with the distance to ``f``'s nearest plane in units of its
-slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Beyond f's slab ``F_f`` is its end slice
-extended, with a weight only near that slice's walls (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of
-the slabs (faces on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
+slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Beyond f's slab
+``F_f`` is its end slice extended, with a weight only near that slice's walls
+(``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of the slabs (faces
+on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
 
 What it means: a hole through the part along the other axis is *seen empty* (weight 1) by the
 family slicing across it and only *filled, unseen* (weight 0.03^2) by the family along it, so
@@ -46,8 +47,8 @@ from recon3d.surface.closure import KIND_LABEL, sample_pieces
 from recon3d.surface.support import contradiction, sensed_solid
 from recon3d.viz import libs
 
-__all__ = ["FusionSettings", "world_axes", "resample", "value_in_slab", "fused_field", "fuse_weighted",
-           "empty_surface", "mesh_of"]
+__all__ = ["FusionSettings", "world_axes", "resample", "value_in_slab", "fused_field",
+           "fuse_weighted", "empty_surface", "mesh_of"]
 
 
 @dataclass(frozen=True)

@@ -212,3 +212,55 @@ def test_in_plane_share_is_the_sine_of_the_normal_to_the_slicing_axis(degrees):
     vol = np.broadcast_to(x + h / np.tan(phi) - 5.0, (grid.layers, 10, 20))  # in-plane SDF
     share = in_plane_share(vol, grid)
     assert np.allclose(share, np.sin(phi), atol=1e-4)
+
+
+def test_an_empty_a_family_did_not_see_on_its_planes_yields_to_a_sensed_solid(ridge_families):
+    """3 mm (12 grid steps) under the ridge's peak, half-way between x's planes x = 15 and 25:
+    z's slices enclose the point behind the traced ridge (a sensed solid, though too deep for
+    z's confidence), x's planes see no ridge there (x's empty is interpolated). x may carve
+    z's solid only where its own planes contradict it (``FusionSettings.explained``)."""
+    mesh, z, x = ridge_families
+    deep = np.array([[20.0, 15.0, 10.0]])
+    assert mesh.contains(deep)[0] and not fuse([x], mesh.bounds).contains(deep)[0]
+    assert fuse([z, x], mesh.bounds).contains(deep)[0]
+    # without the rule x's interpolated empty (weight 0.05^2) beats z's deep solid (0.03^2)
+    unexplained = FusionSettings(explained=False)
+    assert not fuse([z, x], mesh.bounds, "weighted", unexplained).contains(deep)[0]
+
+
+def test_the_contradiction_supports_an_empty_between_planes_that_both_saw_it():
+    """The bore (along z) on x's planes: x sensed it empty where z's filled region says solid.
+    Between two x planes that both cut the bore the support stays 1; half-way between x
+    planes in the block's solid, where x saw no empty, it is 0."""
+    from recon3d.surface.fusion import value_in_slab
+    from recon3d.surface.support import contradiction
+    mesh = _block_with_bore()
+    z, x = _solid(mesh, "z", 8, 0.3).field, _solid(mesh, "x", 12, 0.3).field
+    kx = contradiction(x, [z], value_in_slab)
+    g = x.grid
+    mid = g.slice_layer(5) + g.k // 2  # half-way between x = -1.8 and x = 1.8: in the bore
+    frame = [(p - x.planes[0].origin) @ np.array([x.planes[0].u, x.planes[0].v]).T
+             for p in (np.zeros(3), np.array([0.0, 10.0, 0.0]))]  # bore axis, solid block
+    (bu, bv), (su, sv) = [((u - g.x0) / g.step, (v - g.y0) / g.step) for u, v in frame]
+    assert kx[mid, int(round(bv)), int(round(bu))] > 0.99
+    assert kx[mid, int(round(sv)), int(round(su))] == 0.0
+
+
+def test_space_closed_by_a_lid_is_not_a_sensed_solid():
+    """A U-shaped cup section: W1 traced outside and along the floor, a W3 lid across the
+    mouth. Inside next to W1 the region is a sensed solid; behind the lid it is filled only."""
+    from recon3d.surface.field import FamilyField, family_grid, family_volume
+    from recon3d.surface.support import sensed_solid
+    w1 = [np.array([[10.0, 10.0], [10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [2.0, 10.0],
+                    [2.0, 2.0], [8.0, 2.0], [8.0, 10.0], [10.0, 10.0]])]
+    lid = [np.array([[2.0, 10.0], [8.0, 10.0]])]
+    regions = [slice_region(w1, [], lid, [], 1e-6)] * 2
+    grid = family_grid(regions, [0.0, 1.0], 0.25)
+    vol, conf = family_volume(regions, grid, confidence=True)
+    planes = tuple(slicer.slice_mesh(trimesh.creation.box((20.0, 20.0, 20.0)), "z", 2))
+    field = FamilyField(grid, vol, conf, tuple(p.plane for p in planes), tuple(regions))
+    solid = sensed_solid(field)
+    at = lambda x_, y_: solid[grid.slice_layer(0), int(round((y_ - grid.y0) / grid.step)),
+                              int(round((x_ - grid.x0) / grid.step))]
+    assert at(1.0, 5.0) == 1.0  # in the cup's wall: W1 on both sides
+    assert at(5.0, 8.0) == 0.0  # inside the cup, under the lid: closed, not sensed

@@ -11,9 +11,16 @@ agree there. The fused field is
     F(x) = sum_f c_f(x)^p F_f(x) / sum_f c_f(x)^p      (p = ``power``, 2)
 
 with every ``F_f`` clipped to the smallest truncation of the families (a family with wider
-gaps must not outvote the others by magnitude). Beyond f's slab ``F_f`` is its end slice
-extended, with a weight only near that slice's walls (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of
-the slabs (faces on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
+gaps must not outvote the others by magnitude). **An empty a family did not see yields to a
+sensed solid** (``FusionSettings.explained``, :mod:`recon3d.surface.support`): where ``F_f < 0``
+and another family ``g`` has a *sensed* solid (inside its region behind a traced W1/W2 wall,
+not closed by a W3 lid, an unknown chord or a bridge), ``f``'s weight counts fully only as far
+as ``f``'s own slice planes showed empty where ``g`` says solid (the contradiction, blended
+between ``f``'s planes, so it falls with the distance to ``f``'s nearest plane in units of its
+slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Beyond f's slab
+``F_f`` is its end slice extended, with a weight only near that slice's walls
+(``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of the slabs (faces
+on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
 
 What it means: a hole through the part along the other axis is *seen empty* (weight 1) by the
 family slicing across it and only *filled, unseen* (weight 0.03^2) by the family along it, so
@@ -28,6 +35,7 @@ contoured at 0 with VTK and checked and cut with manifold3d.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import manifold3d
 import numpy as np
@@ -36,10 +44,11 @@ from scipy.ndimage import map_coordinates
 from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import KIND_LABEL, sample_pieces
+from recon3d.surface.support import contradiction, sensed_solid
 from recon3d.viz import libs
 
-__all__ = ["FusionSettings", "world_axes", "resample", "fused_field", "fuse_weighted",
-           "empty_surface", "mesh_of"]
+__all__ = ["FusionSettings", "world_axes", "resample", "value_in_slab", "fused_field",
+           "fuse_weighted", "empty_surface", "mesh_of"]
 
 
 @dataclass(frozen=True)
@@ -53,6 +62,13 @@ class FusionSettings:
         near its walls only (fading over ``extend_scale`` grid steps inside), falling off as
         1 / (1 + (s / extend_scale)^2) at ``s`` grid steps beyond: it shapes the walls there,
         the family that sees the end decides where the part ends.
+    explained : bool -- a family's empty weighs fully against another family's *sensed*
+        solid only as far as its own slice planes contradict that solid
+        (:mod:`recon3d.surface.support`); elsewhere its weight is at most ``cap`` x the solid
+        family's weight. ``grow``: the contradiction's in-plane growth (grid steps).
+        Beyond a family's slab its end slice extended counts as its solid for this rule,
+        fading as 1 / (1 + (s / ``reach``)^2) in the contradiction and as
+        1 / (1 + (s / ``solid_reach``)^2) as the solid that caps (``s`` grid steps beyond).
     """
 
     power: float = 2.0
@@ -60,6 +76,11 @@ class FusionSettings:
     speck: float = 3.0
     extend: float = 0.1
     extend_scale: float = 4.0
+    explained: bool = True
+    cap: float = 0.03
+    grow: float = 2.0
+    reach: float = 4.0
+    solid_reach: float = 16.0
 
 
 def empty_surface() -> trimesh.Trimesh:
@@ -105,20 +126,8 @@ def world_axes(fields, step: float) -> list[np.ndarray]:
     return axes
 
 
-def resample(ff, pts: np.ndarray, outside: float = 1e-6, extend: float = 0.0,
-             scale: float = 4.0) -> tuple[np.ndarray, np.ndarray]:
-    """Field value and confidence of one family at world points.
-
-    Parameters
-    ----------
-    ff : FamilyField; pts : (n, 3) float.
-    outside, extend, scale : float -- confidence beyond the family's slab
-        (:class:`FusionSettings`).
-
-    Returns
-    -------
-    value, conf : (n,) float -- trilinear; beyond the slab the end slice extended.
-    """
+def _coords(ff, pts: np.ndarray):
+    """Grid coordinates of world points in a family's volume, their heights, in-slab mask."""
     g, p = ff.grid, ff.planes[0]
     rel = pts - p.origin
     h = pts @ np.asarray(p.normal, dtype=np.float64)
@@ -126,13 +135,43 @@ def resample(ff, pts: np.ndarray, outside: float = 1e-6, extend: float = 0.0,
     tol = 1e-9 * max(1.0, float(np.abs(g.heights).max()))
     inslab = (h >= g.heights[0] - tol) & (h <= g.heights[-1] + tol)
     lay = np.clip(lay, g.slice_layer(0), g.slice_layer(len(g.heights) - 1))
-    coords = [lay, (rel @ p.v - g.y0) / g.step, (rel @ p.u - g.x0) / g.step]
+    return [lay, (rel @ p.v - g.y0) / g.step, (rel @ p.u - g.x0) / g.step], h, inslab
+
+
+def value_in_slab(ff, pts: np.ndarray, scale: float = 4.0) -> tuple[np.ndarray, np.ndarray]:
+    """Field value (n,) float of one family at world points (n, 3), and (n,) float: 1 in its
+    slab, beyond it falling off as 1 / (1 + (s / scale steps)^2) (the end slice extended)."""
+    coords, h, _ = _coords(ff, pts)
+    g = ff.grid
+    beyond = np.maximum(np.maximum(g.heights[0] - h, h - g.heights[-1]), 0)
+    return (map_coordinates(ff.vol, coords, order=1, mode="nearest"),
+            1 / (1 + (beyond / (scale * g.step)) ** 2))
+
+
+def resample(ff, pts: np.ndarray, outside: float = 1e-6, extend: float = 0.0,
+             scale: float = 4.0, volumes=()) -> tuple[np.ndarray, ...]:
+    """Field value and confidence of one family at world points.
+
+    Parameters
+    ----------
+    ff : FamilyField; pts : (n, 3) float.
+    outside, extend, scale : float -- confidence beyond the family's slab
+        (:class:`FusionSettings`).
+    volumes : sequence of (layers, ny, nx) arrays on ``ff``'s grid -- also sampled.
+
+    Returns
+    -------
+    value, conf, *sampled : (n,) float -- trilinear; beyond the slab the end slice extended.
+    """
+    g = ff.grid
+    coords, h, inslab = _coords(ff, pts)
     v = map_coordinates(ff.vol, coords, order=1, mode="nearest")
     c = map_coordinates(ff.conf, coords, order=1, mode="nearest")
     beyond = np.maximum(g.heights[0] - h, h - g.heights[-1])
     shallow = np.clip(1 - np.maximum(v, 0) / (scale * g.step), 0, 1)
     ext = extend * c * shallow / (1 + (beyond / (scale * g.step)) ** 2)
-    return v, np.where(inslab, c, np.maximum(ext, outside))
+    extra = tuple(map_coordinates(vol, coords, order=1, mode="nearest") for vol in volumes)
+    return (v, np.where(inslab, c, np.maximum(ext, outside))) + extra
 
 
 def _slab_distance(fields, pts: np.ndarray) -> np.ndarray:
@@ -142,6 +181,22 @@ def _slab_distance(fields, pts: np.ndarray) -> np.ndarray:
         h = pts @ np.asarray(ff.planes[0].normal, dtype=np.float64)
         out = np.maximum(out, np.minimum(h - ff.grid.heights[0], ff.grid.heights[-1] - h))
     return out
+
+
+def _family_terms(ff, fields, pts: np.ndarray, settings: FusionSettings):
+    """One family at world points (n, 3): field value, weight c^power, the contradiction
+    supporting its empty and its sensed solid share (both 0 without ``explained``), (n,) each."""
+    others = [o for o in fields if o is not ff] if settings.explained else []
+    extra = ((contradiction(ff, others, partial(value_in_slab, scale=settings.reach),
+                            settings.grow), sensed_solid(ff)) if others else ())
+    v, c, *ks = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale,
+                         extra)
+    wgt = c.astype(np.float64) ** settings.power
+    if not ks:
+        return v, wgt, np.zeros(len(pts)), np.zeros(len(pts))
+    reach = value_in_slab(ff, pts, settings.solid_reach)[1]
+    solid = np.where(v > 0, np.clip(ks[1], 0, 1) * reach, 0.0)
+    return v, wgt, np.clip(ks[0], 0, 1), solid
 
 
 def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
@@ -155,13 +210,22 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
     xs, ys, zs = world_axes(fields, step)
     gz, gy, gx = np.meshgrid(zs, ys, xs, indexing="ij")
     pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
+    tc = min(ff.grid.truncation for ff in fields)
+    vals, parts = [], []
+    for ff in fields:
+        v, wgt, k, solid = _family_terms(ff, fields, pts, settings)
+        vals.append(np.clip(v, -tc, tc))
+        parts.append((wgt, k, solid))
     num = np.zeros(len(pts))
     den = np.zeros(len(pts))
-    tc = min(ff.grid.truncation for ff in fields)
-    for ff in fields:
-        v, c = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale)
-        wgt = c.astype(np.float64) ** settings.power
-        num += wgt * np.clip(v, -tc, tc)
+    for j, (v, (wgt, k, _)) in enumerate(zip(vals, parts)):
+        if settings.explained and len(fields) > 1:  # an unexplained empty yields to a solid
+            capped = wgt
+            for i, (wo, _, so) in enumerate(parts):  # so: another family's sensed solid
+                if i != j:
+                    capped = (1 - so) * capped + so * np.minimum(capped, settings.cap * wo)
+            wgt = np.where(v < 0, k * wgt + (1 - k) * capped, wgt)
+        num += wgt * v
         den += wgt
     fused = np.minimum(num / den, _slab_distance(fields, pts))
     small = np.abs(fused) < 1e-3 * step  # keeps level-set vertices apart from grid nodes

@@ -88,7 +88,9 @@ class KnownContour:
         g = self._near(pl[-1], self.join)
         if len(g):
             a, b = self._a[g], self._b[g]
-            ok = (_point_segments(pl[-1], a, b) <= self.join) & _turns(end_dir, b - a)
+            ok = _point_segments(pl[-1], a, b) <= self.join
+            if ok.any():  # the turn test on the same rows as always (BLAS rounds per call)
+                ok &= _turns(end_dir, b - a)
             pieces = self._piece[g[ok]]
             for j in np.unique(pieces):  # its first segment passing the end
                 nxt.append((int(j), int(g[ok][np.argmax(pieces == j)]) - self._first[j]))
@@ -97,10 +99,10 @@ class KnownContour:
         lo, hi = pl.min(axis=0), pl.max(axis=0)
         reach = self.join + _margin(self.join, lo, hi)
         near = np.flatnonzero(((ends >= lo - reach) & (ends <= hi + reach)).all(axis=1))
+        steps = pl[1:] - pl[:-1]
         for j in near.tolist():
-            ok = (_point_segments(ends[j], pl[:-1], pl[1:]) <= self.join) & _turns(
-                self._end_dirs[j], pl[1:] - pl[:-1])
-            if ok.any():
+            ok = _point_segments(ends[j], pl[:-1], pl[1:]) <= self.join
+            if ok.any() and (ok := ok & _turns(self._end_dirs[j], steps)).any():
                 self._next[j].append((i, int(np.argmax(ok))))
         self._append(pl, i)
         self._ends = np.concatenate([ends, pl[-1:]])

@@ -123,7 +123,7 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
                  for i in range(0, c, step)]
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
     if inner.all() and len(a):
-        tx, ty = np.ascontiguousarray(tg[:, 0]), np.ascontiguousarray(tg[:, 1])
+        tx, ty = np.array(tg[:, 0]), np.array(tg[:, 1])  # writable copies: one signature
         atol = float(atol)
         own = np.full(c, -1, np.int64) if own is None else np.ascontiguousarray(own)
         k = c * len(a)  # at most ``chunk`` pairs: room for all, one pass

@@ -5,9 +5,11 @@ vectors in the slice plane.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["unit", "angle_of", "wrap"]
+__all__ = ["unit", "angle_of", "wrap", "magnitude"]
 
 
 def unit(angle) -> np.ndarray:
@@ -35,3 +37,9 @@ def angle_of(vec) -> float:
 def wrap(angle):
     """Angle(s) wrapped to [-pi, pi)."""
     return (angle + np.pi) % (2 * np.pi) - np.pi
+
+
+def magnitude(vec) -> float:
+    """Euclidean length of a (2,) float64 vector: ``sqrt(v . v)``, the very
+    operations of ``np.linalg.norm`` (same bits) without its overhead."""
+    return math.sqrt(vec.dot(vec))

@@ -123,14 +123,15 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
                  for i in range(0, c, step)]
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
     if inner.all() and len(a):
-        tx, ty = np.ascontiguousarray(tg[:, 0]), np.ascontiguousarray(tg[:, 1])
+        tx, ty = np.array(tg[:, 0]), np.array(tg[:, 1])  # writable copies: one signature
         atol = float(atol)
         own = np.full(c, -1, np.int64) if own is None else np.ascontiguousarray(own)
         k = c * len(a)  # at most ``chunk`` pairs: room for all, one pass
         row, y, x = np.empty(k, np.int64), np.empty((k, 2)), np.empty((k, 2))
         k = _kept_pairs(p, tx, ty, a, b, atol, own, row, y, x)
         width, psi = np.empty(c), np.empty(c)
-        _row_gaps(row[:k], -np.arctan2(y[:k], x[:k]), width, psi)  # numpy's, as below
+        ps = np.arctan2(y[:k], x[:k], out=y[:k])  # numpy's, as below; in place
+        _row_gaps(row[:k], np.negative(ps, out=ps), width, psi)
         angle = np.arctan2(ty, tx) - psi
         return width, (angle + np.pi) % (2 * np.pi) - np.pi
     return _vectorised(p, tg, a, b, inner, own, atol)

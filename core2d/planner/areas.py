@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 from shapely.geometry.base import BaseGeometry
 
+from core2d.planar import magnitude
 from core2d.planner.regions import Posture
 from core2d.planner.robot import Robot
 
@@ -53,7 +54,7 @@ class Area:
     @property
     def dist(self) -> float:
         """Dist(A_i, B_i)."""
-        return float(np.linalg.norm(self.b - self.a))
+        return magnitude(self.b - self.a)
 
     @property
     def single(self) -> bool:

@@ -25,37 +25,12 @@ Two questions the map answers:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numba
 import numpy as np
 
-from core2d.visibility import free_gaps
+from core2d.planner.lid_lines import FreeLine, FreeLines
 
 __all__ = ["KnownContour", "FreeLine"]
-
-
-@dataclass(frozen=True)
-class FreeLine:
-    """A line from F that crosses the lid past the recorded contour.
-
-    point : (2,) float -- where it crosses the lid.
-    direction : (2,) float -- unit direction from F towards the lid, through
-        the middle of the free gap.
-    gap : float -- angular width of that free gap (rad).
-    along : float -- position of ``point`` along the lid, 0 at A, 1 at B.
-    """
-
-    point: np.ndarray
-    direction: np.ndarray
-    gap: float
-    along: float
-
-    def turned(self, fraction: float) -> np.ndarray:
-        """Direction from F through the gap at ``fraction`` of its width
-        (0.5 the middle, 0 and 1 its edges), counter-clockwise positive."""
-        ang = np.arctan2(self.direction[1], self.direction[0]) + (fraction - 0.5) * self.gap
-        return np.array([np.cos(ang), np.sin(ang)])
 
 
 class KnownContour:
@@ -113,7 +88,9 @@ class KnownContour:
         g = self._near(pl[-1], self.join)
         if len(g):
             a, b = self._a[g], self._b[g]
-            ok = (_point_segments(pl[-1], a, b) <= self.join) & _turns(end_dir, b - a)
+            ok = _point_segments(pl[-1], a, b) <= self.join
+            if ok.any():  # the turn test on the same rows as always (BLAS rounds per call)
+                ok &= _turns(end_dir, b - a)
             pieces = self._piece[g[ok]]
             for j in np.unique(pieces):  # its first segment passing the end
                 nxt.append((int(j), int(g[ok][np.argmax(pieces == j)]) - self._first[j]))
@@ -122,10 +99,10 @@ class KnownContour:
         lo, hi = pl.min(axis=0), pl.max(axis=0)
         reach = self.join + _margin(self.join, lo, hi)
         near = np.flatnonzero(((ends >= lo - reach) & (ends <= hi + reach)).all(axis=1))
+        steps = pl[1:] - pl[:-1]
         for j in near.tolist():
-            ok = (_point_segments(ends[j], pl[:-1], pl[1:]) <= self.join) & _turns(
-                self._end_dirs[j], pl[1:] - pl[:-1])
-            if ok.any():
+            ok = _point_segments(ends[j], pl[:-1], pl[1:]) <= self.join
+            if ok.any() and (ok := ok & _turns(self._end_dirs[j], steps)).any():
                 self._next[j].append((i, int(np.argmax(ok))))
         self._append(pl, i)
         self._ends = np.concatenate([ends, pl[-1:]])
@@ -283,30 +260,27 @@ class KnownContour:
         inner = pl[int(np.floor(s0)) + 1:int(np.ceil(s1))]
         return np.vstack([at(s0), inner, at(s1)])
 
-    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> list[FreeLine]:
+    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> FreeLines:
         """Lines from F crossing the open lid A->B from its V side (Def. 3)
         past the recorded contour, one per lid sample with a free gap wider
         than ``min_gap``; empty when none is left (the W3 proof above).
 
         The lid is sampled every ``spacing`` (at most 512 samples), leaving
-        ``margin`` at each touched end.
+        ``margin`` at each touched end. The samples are solved as asked
+        (:class:`~core2d.planner.lid_lines.FreeLines`: ``bool``, ``nearest``,
+        or the whole list).
         """
         a, b = np.asarray(a, float), np.asarray(b, float)
         ab = b - a
         n = float(np.hypot(*ab))
         if n <= 2 * margin:
-            return []
+            none = np.zeros((0, 2))
+            return FreeLines(none, none, np.zeros(0), self._a, self._b, min_gap)
         k = int(min(512, max(2, np.ceil((n - 2 * margin) / spacing) + 1)))
         s = np.linspace(margin, n - margin, k)
         pts = a + (s / n)[:, None] * ab
         tangent = np.broadcast_to(-ab / n, pts.shape)  # B -> A: V_i on its right
-        width, angle = free_gaps(pts, tangent, self._a, self._b)
-        ok = width > min_gap
-        out = []
-        for p, w, ang, f in zip(pts[ok], width[ok], angle[ok], s[ok] / n):
-            toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid
-            out.append(FreeLine(p, toward, float(w), float(f)))
-        return out
+        return FreeLines(pts, tangent, s / n, self._a, self._b, min_gap)
 
 
 def _margin(r, lo, hi) -> float:
@@ -328,8 +302,8 @@ def _turns(d, e) -> np.ndarray:
     """(n,) bool: direction e turns less than 120 degrees from direction d."""
     e = np.asarray(e, float).reshape(-1, 2)
     n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return ~((e @ d) / n <= -0.5)  # nan (a zero-length direction) turns
+    cos = np.divide(e @ d, n, out=np.full(len(e), np.nan), where=n != 0)
+    return ~(cos <= -0.5)  # nan (a zero-length direction) turns
 
 
 def _cross2(x, y):

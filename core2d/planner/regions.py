@@ -20,6 +20,8 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon
 
+from core2d.planar import magnitude
+
 __all__ = [
     "cross", "sgn", "in_V", "Posture", "G_region", "T_contains", "left_normal",
     "trace_direction", "common_point", "polygonal", "V_polygon", "contains", "near_probe",
@@ -133,4 +135,4 @@ def near_probe(point, joint, direction, length, tol) -> bool:
     """Is ``point`` within ``tol`` of the probe segment joint -> joint + L t?"""
     w = np.asarray(point, float) - joint
     s = float(np.clip(w @ direction, 0.0, length))
-    return float(np.linalg.norm(w - s * np.asarray(direction))) <= tol
+    return magnitude(w - s * np.asarray(direction)) <= tol

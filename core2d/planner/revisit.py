@@ -83,9 +83,7 @@ def passes(lines, a, b):
     whichever edge leans towards B (steer +1) or A (steer -1)."""
     out = []
     ab = np.asarray(b, float) - a
-    along = np.array([ln.along for ln in lines])
-    for pos, steer in _PLAN:
-        ln = lines[int(np.argmin(np.abs(along - pos)))]
+    for (pos, steer), ln in zip(_PLAN, lines.nearest_many([pos for pos, _ in _PLAN])):
         if steer == 0:
             out.append((ln.point, ln.direction))
             continue
@@ -98,10 +96,9 @@ def passes(lines, a, b):
 def _sweep(lines, length, eps):
     """One pass every eps/2 along the lid (the nearest free sample), at most
     ``MAX_SWEEP``, alternately at 1/4 and 3/4 of its free gap."""
-    along = np.array([ln.along for ln in lines])
     k = int(min(MAX_SWEEP, max(2, np.ceil(2 * length / eps))))
-    picks = [int(np.argmin(np.abs(along - f))) for f in (np.arange(k) + 0.5) / k]
-    return [(lines[i].point, lines[i].turned(0.25 + 0.5 * (n % 2))) for n, i in enumerate(picks)]
+    picks = lines.nearest_many((np.arange(k) + 0.5) / k)
+    return [(ln.point, ln.turned(0.25 + 0.5 * (n % 2))) for n, ln in enumerate(picks)]
 
 
 def lid_like(run: Exploration, area) -> bool:

@@ -37,6 +37,7 @@ from collections import deque
 
 import numpy as np
 
+from core2d.planar import magnitude
 from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit
@@ -72,7 +73,7 @@ class Budget:
 
 
 def _same(p, q, tol):
-    return float(np.linalg.norm(np.asarray(p) - np.asarray(q))) <= tol
+    return magnitude(np.asarray(p, float) - np.asarray(q, float)) <= tol
 
 
 def _reestablish(probe: Robot, pose):

@@ -199,9 +199,11 @@ def _reach_back(pl, k, step, hop):
     ``step`` (-1 backward, +1 forward), or None: the direction of the
     contour slid along is read over that stretch, not over single
     micro-steps (whose contacts scatter by the contact resolution)."""
-    far = np.hypot(*(pl - pl[k]).T) >= hop
-    idx = range(k - 1, -1, -1) if step < 0 else range(k + 1, len(pl))
-    return next((m for m in idx if far[m]), None)
+    side = pl[:k] if step < 0 else pl[k + 1:]
+    far = np.flatnonzero(np.hypot(*(side - pl[k]).T) >= hop)
+    if not len(far):
+        return None
+    return int(far[-1]) if step < 0 else k + 1 + int(far[0])
 
 
 def _turn(u, w) -> float:

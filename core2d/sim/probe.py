@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from core2d.planar import angle_of, unit
+from core2d.planar import angle_of, magnitude, unit
 from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
 from core2d.resolution import Resolution
 from core2d.result import SenseStats
@@ -158,12 +158,12 @@ class Probe:
         for k, face in ((0, RIGHT), (1, LEFT)):
             if d[k] <= L:
                 f = TIP if L - d[k] <= self.tip_zone else face
-                if not any(np.linalg.norm(q.point - p[k]) <= self.tip_zone for q in contacts):
+                if not any(magnitude(q.point - p[k]) <= self.tip_zone for q in contacts):
                     contacts.append(Contact(p[k], f, d[k]))
         primary = extra.pop("primary", None)
         if primary is not None:
             contacts = [primary] + [
-                c for c in contacts if np.linalg.norm(c.point - primary.point) > self.tip_zone
+                c for c in contacts if magnitude(c.point - primary.point) > self.tip_zone
             ]
         reading = Reading(
             joint=self.joint.copy(),
@@ -184,14 +184,15 @@ class Probe:
         """Move through F to the line through ``point`` along ``direction``,
         tip retracted to the workspace circle (a free transfer motion)."""
         self._motion()
-        t = np.asarray(direction, float) / np.linalg.norm(direction)
+        t = np.asarray(direction, float)
+        t = t / magnitude(t)
         w = np.asarray(point, float) - self.center
         b = w @ t
         disc = b * b - (w @ w - self.radius**2)
         s = -b - np.sqrt(disc) if disc > 0 else -b  # circle entry along the line
         tip = np.asarray(point, float) + (s - self.tol) * t
         joint = tip - self.length * t
-        self.stats.joint_path += float(np.linalg.norm(joint - self.joint))
+        self.stats.joint_path += magnitude(joint - self.joint)
         self.joint, self.theta = joint, angle_of(t)
         return self.sense()
 

@@ -124,17 +124,15 @@ class Recorder:
                                           np.array([r[k + 1] for r in rows], dtype=np.float64)])
                          for k in (3, 5))
         tip = after[:, :2] + L * np.stack([np.cos(after[:, 2]), np.sin(after[:, 2])], axis=1)
-        tip_c = np.full((n, 2), math.nan)
-        counts = np.zeros(n, dtype=np.int16)
-        blocked = np.zeros((n, 2), dtype=bool)
+        none = (math.nan, math.nan)
+        tip_c, counts, blocked = [], [], []
         events, others, start = [], [], [0]
-        for k, row in enumerate(rows):
+        for row in rows:  # plain lists, one array each at the end
             reading = row[7]
             c = reading.tip_contact
-            if c is not None:
-                tip_c[k] = c.point
-            counts[k] = len(reading.contacts)
-            blocked[k] = reading.blocked_ccw, reading.blocked_cw
+            tip_c.append(none if c is None else c.point)
+            counts.append(len(reading.contacts))
+            blocked.append((reading.blocked_ccw, reading.blocked_cw))
             rest = [q.point for q in reading.contacts if q is not c]
             others.extend(rest)
             start.append(start[-1] + len(rest))
@@ -143,6 +141,8 @@ class Recorder:
         return MotionLog(
             kind=kind.astype(np.int8), phase=phase.astype(np.int8), area=area.astype(np.int32),
             event=np.array(events, dtype="<U12"), before=before, after=after, tip=tip,
-            tip_contact=tip_c, contacts=counts, other_start=np.array(start, dtype=np.int64),
-            other=np.array(others, dtype=np.float64).reshape(-1, 2), blocked=blocked,
+            tip_contact=np.array(tip_c, dtype=np.float64).reshape(n, 2),
+            contacts=np.array(counts, dtype=np.int16), other_start=np.array(start, dtype=np.int64),
+            other=np.array(others, dtype=np.float64).reshape(-1, 2),
+            blocked=np.array(blocked, dtype=bool).reshape(n, 2),
             torque=np.array([r[8] for r in rows], dtype=np.int8))

@@ -1,0 +1,80 @@
+"""core2d.planner.lid_lines: the lid question solved sample by sample gives
+the passes of the whole list (the nearest free sample per position)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from core2d.planner.known import KnownContour
+from core2d.visibility import free_gaps
+
+
+def _map(seed):
+    """A map of random short pieces around a lid from A = (0, 0) to B = (4, 0)."""
+    rng = np.random.default_rng(seed)
+    known = KnownContour(join=0.05)
+    for _ in range(int(rng.integers(3, 25))):
+        start = rng.uniform([-2.0, -3.0], [6.0, 3.0])
+        steps = rng.normal(scale=0.4, size=(int(rng.integers(2, 6)), 2))
+        known.add(np.vstack([start, start + np.cumsum(steps, axis=0)]))
+    return known
+
+
+def _whole_list(known, a, b, spacing, margin, min_gap):
+    """Every free line, from one batch of every sample (what the lazy answer replaces)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    n = float(np.hypot(*(b - a)))
+    k = int(min(512, max(2, np.ceil((n - 2 * margin) / spacing) + 1)))
+    s = np.linspace(margin, n - margin, k)
+    pts = a + (s / n)[:, None] * (b - a)
+    width, angle = free_gaps(pts, np.broadcast_to(-(b - a) / n, pts.shape), *known.segments())
+    ok = width > min_gap
+    return pts[ok], width[ok], angle[ok], (s / n)[ok]
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_nearest_free_sample_is_that_of_the_whole_list(seed):
+    known = _map(seed)
+    a, b, args = [0.0, 0.0], [4.0, 0.0], dict(spacing=0.05, margin=0.1, min_gap=0.2)
+    pts, width, angle, along = _whole_list(known, a, b, **args)
+    lines = known.free_lines(a, b, **args)
+    positions = np.r_[np.linspace(0.0, 1.0, 23), 0.5, 0.5 + 1e-3]
+    got = lines.nearest_many(positions)
+    assert bool(lines) == bool(len(pts))
+    for pos, ln in zip(positions, got):
+        if not len(pts):
+            assert ln is None
+            continue
+        i = int(np.argmin(np.abs(along - pos)))
+        np.testing.assert_array_equal(ln.point, pts[i])
+        np.testing.assert_array_equal(ln.direction, -np.array([np.cos(angle[i]), np.sin(angle[i])]))
+        assert (ln.gap, ln.along) == (float(width[i]), float(along[i]))
+        one = lines.nearest(pos)
+        assert (one.gap, one.along) == (ln.gap, ln.along)
+    full = list(known.free_lines(a, b, **args))
+    assert [ln.along for ln in full] == along.tolist()
+
+
+def test_blocked_samples_are_skipped_and_few_are_solved():
+    """A wall in front of the lid's left half (on F's side, above it: the lid
+    runs B -> A with F on its right) blocks the samples there: a pass planned
+    there goes to the nearest free sample, found without solving the whole lid."""
+    known = KnownContour(join=0.05)
+    known.add([[-1.0, 0.05], [2.0, 0.05]])  # just above the left half
+    a, b, args = [0.0, 0.0], [4.0, 0.0], dict(spacing=0.02, margin=0.1, min_gap=0.3)
+    pts, width, angle, along = _whole_list(known, a, b, **args)
+    lines = known.free_lines(a, b, **args)
+    assert 0 < len(pts) < len(lines.points)  # some samples blocked, some free
+    ln = lines.nearest(0.1)
+    assert ln.along == float(along[0]) > 0.4  # the first free sample, past the wall
+    assert lines._solved.sum() < len(lines.points)  # the far end was never asked
+
+
+def test_ties_go_to_the_first_sample():
+    """Samples at 1/8, 3/8, 5/8, 7/8 of the lid, nothing recorded: 1/2 lies
+    exactly between two free samples, and argmin over the list takes the first."""
+    known = KnownContour(join=0.05)
+    lines = known.free_lines([0.0, 0.0], [4.0, 0.0], spacing=1.0, margin=0.5, min_gap=0.1)
+    assert lines.along.tolist() == [0.125, 0.375, 0.625, 0.875]
+    assert lines.nearest(0.5).along == 0.375
+    assert [ln.along for ln in lines.nearest_many([0.5, 0.25, 0.75])] == [0.375, 0.125, 0.625]

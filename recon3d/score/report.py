@@ -49,8 +49,10 @@ def surface_lines(metrics: dict) -> list[str]:
             lines.append(f"{fam['axis']} alone: {_scored(fam, fam.get('surface'), 'its slab')}")
         vs = ev.get("fused_vs_best")
         if vs is not None:
+            d = vs["fscore_1%"]  # 4 decimals where 3 would print a nonzero gap as +0.000
+            fmt = "+.4f" if d is not None and 0 < abs(d) < 5e-4 else "+.3f"
             lines.append(f"fused against the best single axis ({vs['axis']} alone): F@1% "
-                         f"{number(vs['fscore_1%'], '+.3f')}")
+                         f"{number(d, fmt)}")
     return lines
 
 

@@ -82,7 +82,7 @@ def forking(monkeypatch):
     monkeypatch.setattr(api, "can_fork", lambda: True)
 
 
-def test_picture_is_drawn_in_a_child_from_the_written_scene(pocket, tmp_path, monkeypatch,
+def test_picture_is_drawn_in_a_child_from_the_built_scene(pocket, tmp_path, monkeypatch,
                                                             forking):
     monkeypatch.setattr(plot, "save_png", _pid_png)
     monkeypatch.setattr(plot, "load_plotting", lambda: None)

@@ -49,7 +49,8 @@ from recon3d.records import Family
 from recon3d.viz import libs
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",
-           "GroundTruthSamples", "coverage_mesh", "surface_metrics", "one_after_other", "distances", "scored_part"]
+           "GroundTruthSamples", "classified_ground_truth", "surface_distances",
+           "coverage_mesh", "surface_metrics", "one_after_other", "distances", "scored_part"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
 """F-score thresholds as shares of the ground truth's bounding-box diagonal."""
@@ -233,27 +234,42 @@ def scored_part(surface: trimesh.Trimesh) -> trimesh.Trimesh | None:
     return surface.submesh([keep], append=True) if len(keep) else None
 
 
+def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
+                            max_edge: float) -> trimesh.Trimesh:
+    """Ground truth subdivided to ``max_edge`` with a class per face
+    (``face_attributes['coverage']`` (f,) int8, :meth:`ContourCloud.classify`): the part of
+    :func:`coverage_mesh` that needs the sensing only, not the surface."""
+    v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
+    out = trimesh.Trimesh(v, f, process=False)
+    out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
+    return out
+
+
+def surface_distances(points, surface: trimesh.Trimesh, diag: float) -> np.ndarray:
+    """(n,) float: distance of (n, 3) points to the scored part of a labelled surface
+    (:func:`scored_part`) in % of ``diag`` (the unit of ``FSCORE_SHARES``; inf without a
+    scored part), by the compiled :func:`recon3d.score.closest.mesh_distances` (a picture's
+    colours: VTK's distances up to rounding, ~10x faster on 10^5 - 10^6 points)."""
+    part = scored_part(surface)
+    if part is None:
+        return np.full(len(points), np.inf)
+    return 100.0 * mesh_distances(points, part.vertices, part.faces) / diag
+
+
 def coverage_mesh(mesh: trimesh.Trimesh, cloud: ContourCloud, max_edge: float,
                   surface: trimesh.Trimesh | None = None) -> trimesh.Trimesh:
     """Ground truth subdivided to ``max_edge`` with a class per face and a distance per vertex.
 
     Classes (:data:`recon3d.records.COVERAGE_CLASSES`): 0 outside every slab,
     1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole (module
-    doc). Returns a trimesh with ``face_attributes['coverage']`` (f,) int8 and,
-    given the labelled ``surface``, ``vertex_attributes['distance']`` (v,) float:
-    the distance of each vertex to the scored surface (:func:`scored_part`) in
-    % of the ground truth's bounding-box diagonal (the unit of ``FSCORE_SHARES``),
-    by the compiled :func:`recon3d.score.closest.mesh_distances` (a picture's colours:
-    VTK's distances up to rounding, ~10x faster on these 10^5 - 10^6 vertices).
+    doc). Returns a trimesh with ``face_attributes['coverage']`` (f,) int8
+    (:func:`classified_ground_truth`) and, given the labelled ``surface``,
+    ``vertex_attributes['distance']`` (v,) float (:func:`surface_distances`).
     """
-    v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
-    out = trimesh.Trimesh(v, f, process=False)
-    out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
+    out = classified_ground_truth(mesh, cloud, max_edge)
     if surface is not None:
-        part = scored_part(surface)
-        d = (mesh_distances(out.vertices, part.vertices, part.faces) if part is not None
-             else np.full(len(v), np.inf))
-        out.vertex_attributes["distance"] = 100.0 * d / diagonal(mesh)
+        out.vertex_attributes["distance"] = surface_distances(out.vertices, surface,
+                                                              diagonal(mesh))
     return out
 
 

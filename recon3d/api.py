@@ -38,7 +38,7 @@ from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.surface.field import grid_step
-from recon3d.viz import blocks as scene, plot
+from recon3d.viz import blocks as scene, libs, plot
 
 __all__ = ["Result", "run", "load_input", "execute", "Source", "WorkerDied", "cold_kernels",
            "COMPILE_NOTICE", "__version__"]
@@ -253,7 +253,9 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
         another core.
     """
     notes = list(notes)
-    sensed = sense_mesh(mesh, name, config, progress)
+    # pyvista (the reconstruction's flying edges, the scores' distances) is imported while
+    # the workers sense
+    sensed = sense_mesh(mesh, name, config, progress, beside=libs.pyvista)
     notes += sensed.nudge_notes
     # the scene's coloured ground truth beside the rest: subdivided and classified while
     # this process reconstructs, its distances to the surface taken while this one scores

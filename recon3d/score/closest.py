@@ -138,13 +138,17 @@ def _box_dist2(p, lo, hi):
 @numba.njit(cache=True)
 def _query(points, tri, lo, hi, child, first, count, order):
     """(n,) distances of (n, 3) points to the triangles of the hierarchy (nearest box first,
-    boxes no nearer than the best triangle so far skipped)."""
+    boxes no nearer than the best triangle so far skipped; the first bound is the previous
+    point's nearest triangle)."""
     n = points.shape[0]
     out = np.empty(n, dtype=np.float64)
     stack = np.empty(256, dtype=np.int64)
+    last = order[0]
     for q in range(n):
         p = points[q]
-        best = np.inf
+        # the previous point's nearest triangle bounds this one's distance (neighbouring
+        # points: most boxes are skipped at once)
+        best = _tri_dist2(p, tri[last, 0], tri[last, 1], tri[last, 2])
         stack[0] = 0
         top = 1
         while top > 0:
@@ -158,6 +162,7 @@ def _query(points, tri, lo, hi, child, first, count, order):
                     d2 = _tri_dist2(p, tri[t, 0], tri[t, 1], tri[t, 2])
                     if d2 < best:
                         best = d2
+                        last = t
                 continue
             c = child[node]
             da = _box_dist2(p, lo[c], hi[c])

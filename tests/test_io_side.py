@@ -148,3 +148,22 @@ def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, 
     monkeypatch.setattr(api, "_coverage", again)
     assert res.blocks()["ground_truth"].n_cells == len(here.faces)
     assert res.blocks() is res.blocks()  # built once: save and plot draw the same scene
+
+
+def test_without_pictures_the_child_writes_the_scene(pocket, tmp_path, monkeypatch, forking):
+    """--no-png: scene.vtm is written by a forked child, the same bytes as written here."""
+    saved = []
+    real = outputs._save_scene
+
+    def tagged(scene, stage):
+        saved.append(os.getpid())
+        real(scene, stage)
+
+    monkeypatch.setattr(outputs, "_save_scene", tagged)
+    files = pocket.save(tmp_path / "fork", png=False)
+    assert saved == [] and "scene.vtm" in {p.name for p in files}  # not called here
+    monkeypatch.setattr(outputs, "can_fork", lambda: False)
+    pocket.save(tmp_path / "one", png=False)
+    assert saved == [os.getpid()]
+    for part in ["scene.vtm", *(f"scene/{p.name}" for p in (tmp_path / "one" / "scene").iterdir())]:
+        assert (tmp_path / "fork" / part).read_bytes() == (tmp_path / "one" / part).read_bytes()

@@ -10,6 +10,7 @@ are drawn by a child (:class:`recon3d.io.side.Side`) forked once the scene is
 built: it loads pyvista's plotting, draws ``slices.png`` and renders the scene
 it inherited while this process writes ``scene.vtm`` and the other files: the
 slow libraries load and draw on one core, the files are written on the other.
+Without pictures, the child writes ``scene.vtm`` while this process writes the rest.
 """
 from __future__ import annotations
 
@@ -94,10 +95,14 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
         # the pictures in a forked child: it loads pyvista's plotting, draws slices.png and
         # renders the scene it inherited as coverage.png while this process writes
         # scene.vtm and the rest; without fork, all of it here, one after the other
-        side = (Side(_pictures, stage, title, sensing, metrics, slices, scene)
-                if png and can_fork() else None)
+        # (without pictures the child writes scene.vtm, the slowest file, instead)
+        side = None
+        if can_fork():
+            side = (Side(_pictures, stage, title, sensing, metrics, slices, scene) if png
+                    else Side(_save_scene, scene, stage))
         try:
-            scene.save(str(stage / "scene.vtm"))
+            if png or side is None:
+                _save_scene(scene, stage)
             write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
             write_json(stage / "metrics.json", metrics)
             write_motions(stage / "motions.csv", slices)
@@ -112,6 +117,11 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
             if side is not None:  # an error here: the child's picture is thrown away too
                 side.stop()
     return staged.written
+
+
+def _save_scene(scene, stage: Path) -> None:
+    """Write ``scene.vtm`` (and its ``scene/`` folder) into ``stage``."""
+    scene.save(str(stage / "scene.vtm"))
 
 
 def _pictures(stage: Path, title: str, sensing: dict, metrics: dict, slices, scene) -> None:

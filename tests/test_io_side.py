@@ -167,3 +167,16 @@ def test_without_pictures_the_child_writes_the_scene(pocket, tmp_path, monkeypat
     assert saved == [os.getpid()]
     for part in ["scene.vtm", *(f"scene/{p.name}" for p in (tmp_path / "one" / "scene").iterdir())]:
         assert (tmp_path / "fork" / part).read_bytes() == (tmp_path / "one" / part).read_bytes()
+
+
+def _can_fork_here(_):
+    from recon3d.io.side import can_fork
+
+    return can_fork()
+
+
+def test_no_side_process_inside_a_daemonic_worker():
+    """A pool (or Dask) worker is daemonic and may not have children: it runs one process."""
+    ctx = multiprocessing.get_context("fork")
+    with ctx.Pool(1) as pool:
+        assert pool.map(_can_fork_here, [0]) == [False]

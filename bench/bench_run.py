@@ -5,8 +5,11 @@ included) ``recon3d run`` runs in a fresh process; a small driver times the whol
 (from the parent: interpreter start-up, imports, sensing, reconstruction, scores, files,
 pictures) and, inside it, the wall time of the sensing call alone
 (:func:`recon3d.sensing.sense_mesh`: slices sensed and scored by the workers, the pool's
-start included). Printed per scene: the medians over ``--repeat`` runs of both and of
-their ratio (target: whole run <= 2 x sensing). Then ``import recon3d`` in a fresh
+start included). Printed per scene: the medians over ``--repeat`` runs of both, of
+their ratio (target: whole run <= 2 x sensing) and of the CPU seconds of the whole
+process tree (workers and side processes included: on a loaded machine the wall
+seconds vary, the CPU seconds hardly). The load average is printed at the start and
+the end. Then ``import recon3d`` in a fresh
 interpreter (target <= 0.5 s; ``-X importtime``, start-up excluded) and the 176k-face
 mesh -- ``vtk_42400-IDGH.stl`` of ``../shared/meshes`` subdivided twice -- at 64 slices,
 ``--jobs 2 --no-png`` (target <= 15 s wall).
@@ -27,6 +30,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -65,16 +69,24 @@ def _env(root: Path) -> dict:
     return dict(os.environ, PYTHONPATH=str(root), VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
 
 
-def run_once(root: Path, source: str, out: Path, flags: list[str]) -> tuple[float, float]:
-    """(whole-process wall s, sensing wall s) of one ``recon3d run`` with the files of ``root``."""
+def _children_cpu() -> float:
+    """User + system CPU seconds of every finished child process (their own children too)."""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def run_once(root: Path, source: str, out: Path, flags: list[str]) -> tuple[float, float, float]:
+    """(whole-process wall s, sensing wall s, CPU s of the whole process tree) of one
+    ``recon3d run`` with the files of ``root`` (the CPU seconds -- workers and side
+    processes included -- hardly depend on what else the machine runs; the wall seconds do)."""
     cmd = [sys.executable, "-c", _DRIVER, "run", source, "--out", str(out), "--quiet", *flags]
-    t0 = time.perf_counter()
+    c0, t0 = _children_cpu(), time.perf_counter()
     proc = subprocess.run(cmd, cwd=str(root), env=_env(root), capture_output=True, text=True)
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
     if proc.returncode != 0:
         raise SystemExit(f"bench_run: recon3d run {source} failed ({root}):\n"
                          f"{proc.stderr[-2000:]}")
-    return wall, json.loads(proc.stdout.strip().splitlines()[-1])["sense"]
+    return wall, json.loads(proc.stdout.strip().splitlines()[-1])["sense"], cpu
 
 
 def import_seconds(root: Path) -> float:
@@ -84,6 +96,11 @@ def import_seconds(root: Path) -> float:
                           check=True)
     line = [ln for ln in proc.stderr.splitlines() if ln.rstrip().endswith("| recon3d")][-1]
     return int(line.split("|")[1]) / 1e6
+
+
+def _load() -> str:
+    """The 1, 5 and 15 minute load averages (other jobs on the machine)."""
+    return " / ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def _median(values) -> float:
@@ -127,13 +144,15 @@ def main(argv=None) -> int:
             trees.insert(0, (f"before {short}", src))
         print(f"after: commit {head}{' + uncommitted changes' if dirty else ''}"
               + (f"; {trees[0][0]}" if args.before else "")
-              + f"; {args.slices} z-slices, --jobs 2, {repeat} run(s) each, medians", flush=True)
+              + f"; {args.slices} z-slices, --jobs 2, {repeat} run(s) each, medians; "
+              f"load average {_load()}", flush=True)
         for tag, root in trees:  # compiled kernels loaded (or built) before timing
             run_once(root, scenes[0] if scenes else "fig18_overhangs", tmp / "warm",
                      ["--slices", "2", "--jobs", "1", "--no-png"])
-        cols = f"{'scene':18s} {'run s':>6s} {'sense s':>7s} {'ratio':>6s}"
+        cols = f"{'scene':18s} {'run s':>6s} {'sense s':>7s} {'ratio':>6s} {'CPU s':>6s}"
         if args.before:
-            cols += f" | {'before run s':>12s} {'sense s':>7s} {'ratio':>6s}  run speed-up  same"
+            cols += (f" | {'before run s':>12s} {'sense s':>7s} {'ratio':>6s} {'CPU s':>6s}"
+                     f"  run speed-up  CPU ratio  same")
         print(cols, flush=True)
         ratios = []
         flags = ["--slices", str(args.slices), "--jobs", "2"]
@@ -142,15 +161,17 @@ def main(argv=None) -> int:
             for r in range(repeat):
                 for tag, root in (trees if r % 2 == 0 else trees[::-1]):
                     got[tag].append(run_once(root, scene, tmp / tag.split()[0] / scene, flags))
-            med = {tag: (_median([w for w, _ in v]), _median([s for _, s in v]),
-                         _median([w / s for w, s in v])) for tag, v in got.items()}
-            w, s, q = med["after"]
+            med = {tag: (_median([w for w, _, _ in v]), _median([s for _, s, _ in v]),
+                         _median([w / s for w, s, _ in v]), _median([c for _, _, c in v]))
+                   for tag, v in got.items()}
+            w, s, q, c = med["after"]
             ratios.append(q)
-            line = f"{scene:18s} {w:6.2f} {s:7.2f} {q:5.1f}x"
+            line = f"{scene:18s} {w:6.2f} {s:7.2f} {q:5.1f}x {c:6.1f}"
             if args.before:
-                bw, bs, bq = med[trees[0][0]]
+                bw, bs, bq, bc = med[trees[0][0]]
                 same = compare(tmp / "before" / scene, tmp / "after" / scene)
-                line += f" | {bw:12.2f} {bs:7.2f} {bq:5.1f}x  {bw / w:11.2f}x  {same}"
+                line += (f" | {bw:12.2f} {bs:7.2f} {bq:5.1f}x {bc:6.1f}  {bw / w:11.2f}x"
+                         f"  {bc / c:8.2f}x  {same}")
             print(line, flush=True)
         if ratios:
             print(f"whole run / sensing: median {_median(ratios):.1f}x, worst {max(ratios):.1f}x "
@@ -164,15 +185,16 @@ def main(argv=None) -> int:
             path, faces = subdivided(LARGE, tmp)
             large = ["--slices", str(large_n), "--jobs", "2", "--no-png"]
             for tag, root in trees:
-                w, s = run_once(root, str(path), tmp / f"large-{tag.split()[0]}", large)
+                w, s, c = run_once(root, str(path), tmp / f"large-{tag.split()[0]}", large)
                 print(f"{LARGE} x16 ({faces:,} faces), {large_n} slices, --jobs 2 --no-png "
-                      f"({tag}): {w:.1f} s wall, sensing {s:.1f} s (target <= "
+                      f"({tag}): {w:.1f} s wall, sensing {s:.1f} s, CPU {c:.1f} s (target <= "
                       f"{TARGETS['large']:.0f} s at 64: {_flag(w <= TARGETS['large'])})",
                       flush=True)
             if args.before:
                 print(f"large mesh outputs: {compare(tmp / 'large-before', tmp / 'large-after')}")
         elif large_n:
             print(f"large mesh skipped: {SHARED / LARGE} not found")
+        print(f"load average at the end: {_load()}")
     return 0
 
 

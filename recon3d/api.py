@@ -24,19 +24,21 @@ import trimesh
 import meshes
 from meshes.loading import open_edge_count
 from recon3d.checks import InputError, check_flag, check_out_dir
-from recon3d.config import RunConfig, validate
+from recon3d.config import RunConfig, diagonal, validate
 from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import write_outputs
 from recon3d.io.side import Side, can_fork
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
-from recon3d.score.evaluate import contour_cloud, coverage_mesh
+from recon3d.score.evaluate import (classified_ground_truth, contour_cloud, coverage_mesh,
+                                    surface_distances)
 from recon3d.score.report import chord_lines, slicing_text, surface_lines
 from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.surface import Reconstruction, reconstruct
-from recon3d.viz import blocks as scene, plot
+from recon3d.surface.field import grid_step
+from recon3d.viz import blocks as scene, libs, plot
 
 __all__ = ["Result", "run", "load_input", "execute", "Source", "WorkerDied", "cold_kernels",
            "COMPILE_NOTICE", "__version__"]
@@ -215,11 +217,29 @@ def _coverage(mesh: trimesh.Trimesh, sensed: MeshRun, recon: Reconstruction) -> 
     return coverage_mesh(mesh, contour_cloud(sensed.families), 2 * recon.step, recon.surface)
 
 
-def _coverage_arrays(mesh, sensed, recon) -> tuple:
-    """:func:`_coverage` as plain arrays (what a side process sends back)."""
-    gt = _coverage(mesh, sensed, recon)
-    return (gt.vertices, gt.faces, gt.face_attributes["coverage"],
-            gt.vertex_attributes.get("distance"))
+def _classified_arrays(mesh: trimesh.Trimesh, sensed: MeshRun) -> tuple:
+    """The ground truth subdivided and classified (:func:`classified_ground_truth`), as plain
+    arrays (what a side process sends back): vertices, faces, coverage class per face. Its
+    edge length is the one :func:`_coverage` uses (twice the reconstruction's grid step),
+    known before the reconstruction."""
+    step = grid_step(sensed.eps, diagonal(mesh))
+    gt = classified_ground_truth(mesh, contour_cloud(sensed.families), 2 * step)
+    return gt.vertices, gt.faces, gt.face_attributes["coverage"]
+
+
+def _side_by_side(first: Callable[[], Any], second: Callable[[], Any]) -> tuple[Any, Any]:
+    """``(first(), second())`` with ``first`` in a forked child (:class:`recon3d.io.side.Side`)
+    while this process runs ``second``: the scores' two VTK distance calls on two cores."""
+    if not can_fork():
+        return first(), second()
+    side = Side(first)
+    try:
+        b = second()
+        a, side = side.result(), None
+    finally:
+        if side is not None:
+            side.stop()
+    return a, b
 
 
 def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence[str] = (),
@@ -229,28 +249,34 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
 
     stage : callable(str), optional -- told when reconstruction and scoring start.
     scene : bool -- the scene's coloured ground truth will be wanted (``save``): where a
-        process can fork, it is computed beside the scores, on another core.
+        process can fork, it is computed beside the reconstruction and the scores, on
+        another core.
     """
     notes = list(notes)
-    sensed = sense_mesh(mesh, name, config, progress)
+    # pyvista (the reconstruction's flying edges, the scores' distances) is imported while
+    # the workers sense
+    sensed = sense_mesh(mesh, name, config, progress, beside=libs.pyvista)
     notes += sensed.nudge_notes
-    if stage is not None:
-        stage("reconstructing")
-    recon = reconstruct(sensed)
-    if stage is not None:
-        stage("scoring")
-    side = Side(_coverage_arrays, mesh, sensed, recon) if scene and can_fork() else None
+    # the scene's coloured ground truth beside the rest: subdivided and classified while
+    # this process reconstructs, its distances to the surface taken while this one scores
+    side = Side(_classified_arrays, mesh, sensed) if scene and can_fork() else None
     try:
-        surface, info = score(sensed, recon)
-        doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
+        if stage is not None:
+            stage("reconstructing")
+        recon = reconstruct(sensed)
+        if stage is not None:
+            stage("scoring")
         gt = None
         if side is not None:
-            v, f, cov, dist = side.result()
-            side = None
+            v, f, cov = side.result()
             gt = trimesh.Trimesh(v, f, process=False)
             gt.face_attributes["coverage"] = cov
-            if dist is not None:
-                gt.vertex_attributes["distance"] = dist
+            side = Side(surface_distances, v, recon.surface, diagonal(mesh))
+        surface, info = score(sensed, recon, pair=_side_by_side)
+        doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
+        if side is not None:
+            gt.vertex_attributes["distance"] = side.result()
+            side = None
     finally:
         if side is not None:
             side.stop()

@@ -77,6 +77,8 @@ class SliceRun:
     metrics : dict -- core2d's slice metrics (+ ``robot_time_s``).
     workspace : ((2,) float, float) -- centre and radius the robot knows.
     truth : ContourTruth
+    motion_rows : str or None -- this slice's rows of ``motions.csv``, made by the worker
+        that sensed it (:func:`recon3d.io.motions.slice_rows`; None: made when written).
     """
 
     slice: slicer.Slice | None
@@ -86,6 +88,7 @@ class SliceRun:
     metrics: dict
     workspace: tuple
     truth: ContourTruth
+    motion_rows: str | None = None
 
     @property
     def has_reference(self) -> bool:

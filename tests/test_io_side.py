@@ -82,7 +82,7 @@ def forking(monkeypatch):
     monkeypatch.setattr(api, "can_fork", lambda: True)
 
 
-def test_picture_is_drawn_in_a_child_from_the_written_scene(pocket, tmp_path, monkeypatch,
+def test_picture_is_drawn_in_a_child_from_the_built_scene(pocket, tmp_path, monkeypatch,
                                                             forking):
     monkeypatch.setattr(plot, "save_png", _pid_png)
     monkeypatch.setattr(plot, "load_plotting", lambda: None)
@@ -148,3 +148,35 @@ def test_scene_ground_truth_computed_beside_the_scores_is_the_one_saved(pocket, 
     monkeypatch.setattr(api, "_coverage", again)
     assert res.blocks()["ground_truth"].n_cells == len(here.faces)
     assert res.blocks() is res.blocks()  # built once: save and plot draw the same scene
+
+
+def test_without_pictures_the_child_writes_the_scene(pocket, tmp_path, monkeypatch, forking):
+    """--no-png: scene.vtm is written by a forked child, the same bytes as written here."""
+    saved = []
+    real = outputs._save_scene
+
+    def tagged(scene, stage):
+        saved.append(os.getpid())
+        real(scene, stage)
+
+    monkeypatch.setattr(outputs, "_save_scene", tagged)
+    files = pocket.save(tmp_path / "fork", png=False)
+    assert saved == [] and "scene.vtm" in {p.name for p in files}  # not called here
+    monkeypatch.setattr(outputs, "can_fork", lambda: False)
+    pocket.save(tmp_path / "one", png=False)
+    assert saved == [os.getpid()]
+    for part in ["scene.vtm", *(f"scene/{p.name}" for p in (tmp_path / "one" / "scene").iterdir())]:
+        assert (tmp_path / "fork" / part).read_bytes() == (tmp_path / "one" / part).read_bytes()
+
+
+def _can_fork_here(_):
+    from recon3d.io.side import can_fork
+
+    return can_fork()
+
+
+def test_no_side_process_inside_a_daemonic_worker():
+    """A pool (or Dask) worker is daemonic and may not have children: it runs one process."""
+    ctx = multiprocessing.get_context("fork")
+    with ctx.Pool(1) as pool:
+        assert pool.map(_can_fork_here, [0]) == [False]

@@ -147,3 +147,20 @@ def test_sensing_json_segments_carry_their_motion(pocket_run):
         assert [seg["class"] for seg in s["segments"]] == (
             ["W1"] * len(srun.result.w1) + ["W2"] * len(srun.result.w2)
             + ["W3"] * len(srun.result.w3))
+
+
+def test_rows_made_in_the_worker_are_the_rows_made_when_written(pocket_run):
+    """Each worker sends its slice's motions.csv rows back with the slice; the file is the
+    one the parent would have made from the motion logs, and the rows are used as sent."""
+    import dataclasses
+
+    from recon3d.io.motions import slice_rows
+
+    assert all(s.motion_rows for s in pocket_run.slices)
+    for s in pocket_run.slices:
+        assert s.motion_rows == slice_rows(s, s.slice.plane)
+    plain = [dataclasses.replace(s, motion_rows=None) for s in pocket_run.slices]
+    assert motions_text(pocket_run.slices) == motions_text(plain)
+    marked = [dataclasses.replace(s, motion_rows=f"sent {k}")
+              for k, s in enumerate(pocket_run.slices)]
+    assert motions_text(marked).splitlines()[1:] == [f"sent {k}" for k in range(len(marked))]

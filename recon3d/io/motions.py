@@ -20,7 +20,7 @@ from core2d.motionlog import KINDS, PHASES
 from recon3d.checks import InputError
 from recon3d.records import SliceRun
 
-__all__ = ["COLUMNS", "FILENAME", "motions_text", "write_motions", "read_motions", "read_log",
+__all__ = ["COLUMNS", "FILENAME", "slice_rows", "motions_text", "write_motions", "read_motions", "read_log",
            "other_points"]
 
 FILENAME = "motions.csv"
@@ -38,12 +38,12 @@ _STR = {"kind", "phase", "event", "other_contacts"}
 _ROW = ",".join("%d" if c in _INT else "%s" if c in _STR else "%.12g" for c in COLUMNS)
 
 
-def _columns(srun: SliceRun) -> dict | None:
+def _columns(srun: SliceRun, plane) -> dict | None:
     """The columns of one slice as lists (None without a log); NaN marks an empty cell."""
     log = srun.result.motions
     if log is None or not len(log):
         return None
-    plane, n = srun.slice.plane, len(log)
+    n = len(log)
     o, u, v = (np.asarray(x, dtype=np.float64) for x in (plane.origin, plane.u, plane.v))
     b, a = log.before, log.after
     w0 = o + b[:, :1] * u + b[:, 1:2] * v
@@ -70,15 +70,25 @@ def _columns(srun: SliceRun) -> dict | None:
     return cols
 
 
-def motions_text(slices) -> str:
-    """The CSV text of the motions of ``slices`` (SliceRuns with their ``slice``)."""
-    lines = [",".join(COLUMNS)]
-    for srun in slices:
-        cols = _columns(srun)
-        if cols is not None:
-            lines.extend(_ROW % row for row in zip(*(cols[c] for c in COLUMNS)))
+def slice_rows(srun: SliceRun, plane) -> str:
+    """The rows of one slice's motions (no header, no final newline; "" without a log).
+
+    plane : slicer.SlicePlane -- the slice's plane (its world frame; a worker passes its
+        own, the SliceRun it sends back has no ``slice``)."""
+    cols = _columns(srun, plane)
+    if cols is None:
+        return ""
+    text = "\n".join(_ROW % row for row in zip(*(cols[c] for c in COLUMNS)))
     # only the float cells can read "nan" (the tip contact point): empty cells
-    return "\n".join(lines).replace(",nan", ",") + "\n"
+    return text.replace(",nan", ",")
+
+
+def motions_text(slices) -> str:
+    """The CSV text of the motions of ``slices`` (SliceRuns with their ``slice``); the rows
+    a worker made (``motion_rows``) are taken as they are."""
+    rows = (s.motion_rows if s.motion_rows is not None else slice_rows(s, s.slice.plane)
+            for s in slices)
+    return "\n".join([",".join(COLUMNS), *(r for r in rows if r)]) + "\n"
 
 
 def write_motions(path, slices) -> None:

@@ -6,16 +6,15 @@ are still written and a ``RuntimeWarning`` says why the picture is missing.
 OpenGL: matplotlib's Agg draws it.
 
 Where the process can fork (:func:`recon3d.io.side.can_fork`), both pictures
-are drawn by a child (:class:`recon3d.io.side.Side`) that loads pyvista's
-plotting and draws ``slices.png`` while this process builds the scene, then
-renders the ``scene.vtm`` written here -- the same pixels -- while this
-process writes the other files: the two slow libraries load and draw on
-two cores.
+are drawn by a child (:class:`recon3d.io.side.Side`) forked once the scene is
+built: it loads pyvista's plotting, draws ``slices.png`` and renders the scene
+it inherited while this process writes ``scene.vtm`` and the other files: the
+slow libraries load and draw on one core, the files are written on the other.
+Without pictures, the child writes ``scene.vtm`` while this process writes the rest.
 """
 from __future__ import annotations
 
 import json
-import multiprocessing
 import warnings
 from pathlib import Path
 
@@ -26,7 +25,7 @@ from recon3d.io import ply
 from recon3d.io.motions import write_motions
 from recon3d.io.side import Side, can_fork
 from recon3d.io.staged import Staged
-from recon3d.viz import libs, plot
+from recon3d.viz import plot
 from recon3d.viz.multiples import save_multiples
 from recon3d.viz.sliceview import slice_views
 
@@ -92,27 +91,25 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     """
     staged = Staged(out, replaces=OUTPUTS)
     with staged as stage:
-        # the pictures in a forked child: it loads pyvista's plotting and draws slices.png
-        # while this process builds the scene, then draws the scene.vtm written here as
-        # coverage.png (the same picture) while this process writes the rest; without
-        # fork, all of it here, one after the other
+        scene = blocks() if callable(blocks) else blocks
+        # the pictures in a forked child: it loads pyvista's plotting, draws slices.png and
+        # renders the scene it inherited as coverage.png while this process writes
+        # scene.vtm and the rest; without fork, all of it here, one after the other
+        # (without pictures the child writes scene.vtm, the slowest file, instead)
         side = None
-        if png and can_fork():
-            go = multiprocessing.get_context("fork").Event()
-            side = Side(_pictures_when_told, go, stage, title, sensing, metrics, slices)
+        if can_fork():
+            side = (Side(_pictures, stage, title, sensing, metrics, slices, scene) if png
+                    else Side(_save_scene, scene, stage))
         try:
-            scene = blocks() if callable(blocks) else blocks
-            scene.save(str(stage / "scene.vtm"))
-            if side is not None:
-                go.set()
+            if png or side is None:
+                _save_scene(scene, stage)
             write_json(stage / "sensing.json", sensing, indent=None)  # machine data: compact
             write_json(stage / "metrics.json", metrics)
             write_motions(stage / "motions.csv", slices)
             ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
                           np.asarray(surface.face_attributes["label"]))
             if png and side is None:
-                write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
-                _render(scene, stage / "coverage.png", title)
+                _pictures(stage, title, sensing, metrics, slices, scene)
             elif side is not None:
                 side.result()
                 side = None
@@ -122,11 +119,14 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
     return staged.written
 
 
-def _pictures_when_told(go, stage: Path, title: str, sensing: dict, metrics: dict,
-                        slices) -> None:
-    """In the child: load pyvista's plotting, draw ``slices.png``, wait for
-    ``stage/scene.vtm`` (``go``), render it as ``coverage.png``."""
+def _save_scene(scene, stage: Path) -> None:
+    """Write ``scene.vtm`` (and its ``scene/`` folder) into ``stage``."""
+    scene.save(str(stage / "scene.vtm"))
+
+
+def _pictures(stage: Path, title: str, sensing: dict, metrics: dict, slices, scene) -> None:
+    """Load pyvista's plotting, draw ``slices.png``, render ``scene`` as ``coverage.png``
+    (in the child, or here)."""
     plot.load_plotting()
     write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
-    go.wait()
-    _render(libs.pyvista().read(str(stage / "scene.vtm")), stage / "coverage.png", title)
+    _render(scene, stage / "coverage.png", title)

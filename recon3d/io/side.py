@@ -29,8 +29,10 @@ _GL = "vtkmodules.vtkRenderingOpenGL2"
 
 
 def can_fork() -> bool:
-    """True where a child can be forked safely: POSIX fork, no OpenGL context made yet."""
-    return "fork" in multiprocessing.get_all_start_methods() and _GL not in sys.modules
+    """True where a child can be forked safely: POSIX fork, no OpenGL context made yet, and
+    not inside a daemonic process (a Dask or pool worker: those may have no children)."""
+    return ("fork" in multiprocessing.get_all_start_methods() and _GL not in sys.modules
+            and not multiprocessing.current_process().daemon)
 
 
 def _child(conn, fn: Callable, args: tuple) -> None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from recon3d.records import Family, MeshRun
 from recon3d.score.evaluate import (FSCORE_SHARES, SAMPLES, Domain, GroundTruthSamples,
-                                    contour_cloud, surface_metrics)
+                                    contour_cloud, one_after_other, surface_metrics)
 from recon3d.surface.reconstruct import Reconstruction
 from recon3d.surface.solid import fuse
 
@@ -33,13 +33,13 @@ def _entry(surface: dict | None, extra: dict | None) -> dict:
     return out
 
 
-def _own(run: MeshRun, fam: Family, solid, samples: int) -> dict:
+def _own(run: MeshRun, fam: Family, solid, samples: int, pair) -> dict:
     """A family's own surface (its solid alone) scored over its own slab."""
     if solid is None:
         return _entry(None, None)
     gt = GroundTruthSamples(run.mesh, Domain.of([solid]), samples)
     surface, extra = surface_metrics(fuse([solid], run.mesh.bounds), gt,
-                                     contour_cloud([fam]), samples)
+                                     contour_cloud([fam]), samples, pair=pair)
     return _entry(surface, extra)
 
 
@@ -47,9 +47,12 @@ def _f1(entry: dict) -> float | None:
     return ((entry.get("surface") or {}).get("fscore") or {}).get("1%")
 
 
-def score(run: MeshRun, recon: Reconstruction,
-          samples: int = SAMPLES) -> tuple[dict | None, dict]:
+def score(run: MeshRun, recon: Reconstruction, samples: int = SAMPLES,
+          pair=one_after_other) -> tuple[dict | None, dict]:
     """3D metrics of a reconstruction.
+
+    pair : callable -- how each surface's two distance calls run
+    (:func:`recon3d.score.evaluate.surface_metrics`).
 
     Returns
     -------
@@ -68,12 +71,13 @@ def score(run: MeshRun, recon: Reconstruction,
         return None, info
     info["domain"] = dom.as_dict()
     gt = GroundTruthSamples(run.mesh, dom, samples)
-    surface, extra = surface_metrics(recon.surface, gt, contour_cloud(run.families), samples)
+    surface, extra = surface_metrics(recon.surface, gt, contour_cloud(run.families), samples,
+                                     pair=pair)
     info.update(extra)
     several = len(run.families) > 1
     families = []
     for fam, solid in zip(run.families, recon.solids):
-        entry = _own(run, fam, solid, samples) if several else _entry(surface, extra)
+        entry = _own(run, fam, solid, samples, pair) if several else _entry(surface, extra)
         families.append({"axis": fam.label, "slices": len(fam.slices), **entry})
     info["families"] = families
     if several:

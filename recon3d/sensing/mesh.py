@@ -38,7 +38,8 @@ def _sense_uniform(sense, cuts: list, res: Resolved):
 
 
 def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
-               progress: Callable[[SliceRun], None] | None = None) -> MeshRun:
+               progress: Callable[[SliceRun], None] | None = None,
+               beside: Callable[[], object] | None = None) -> MeshRun:
     """Slice ``mesh`` along every axis of ``config`` and sense the planes its plan picks.
 
     Parameters
@@ -47,6 +48,8 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
     name : str -- label written to the output.
     config : RunConfig -- checked (:func:`recon3d.config.validate`).
     progress : callable(SliceRun) or None -- called as each slice finishes.
+    beside : callable() or None -- run in a thread of this process while worker processes
+        sense (:func:`recon3d.sensing.pool.sense_all`).
 
     Returns
     -------
@@ -66,7 +69,8 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
                              float(config.torque_noise))
 
     def sense(tasks):
-        return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress)
+        return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress,
+                         beside=beside)
 
     if auto:
         n = int(config.max_slices)

@@ -33,8 +33,10 @@ import multiprocessing
 import os
 import signal
 import sys
+import threading
 import traceback
 from collections.abc import Callable
+from typing import Any
 from multiprocessing.connection import wait
 
 import numpy as np
@@ -233,8 +235,18 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
                 progress(out[k])
 
 
+def _beside(fn: Callable[[], Any]) -> None:
+    """``fn()`` in a thread, its error dropped (what it prepares is made again, and fails
+    loudly, where it is used)."""
+    try:
+        fn()
+    except Exception:  # noqa: BLE001 - a preparation only
+        pass
+
+
 def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, tasks: list,
-              jobs: int, progress: Callable[[SliceRun], None] | None = None) -> list[SliceRun]:
+              jobs: int, progress: Callable[[SliceRun], None] | None = None,
+              beside: Callable[[], Any] | None = None) -> list[SliceRun]:
     """Sense ``tasks``; return their SliceRuns (``slice`` None) in task order.
 
     Parameters
@@ -245,6 +257,10 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
     tasks : list of (family, index) or (family, index, eps)
     jobs : int -- worker processes (1: in this process).
     progress : callable(SliceRun) or None -- called as slices finish.
+    beside : callable() or None -- with worker processes, run in a thread of this process
+        (which only waits for them) once they are forked, and joined before returning (so
+        nothing forks while it runs): the parent's own preparations, e.g. importing
+        pyvista for the reconstruction. Not called with ``jobs=1``.
 
     Raises
     ------
@@ -267,12 +283,18 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
         ctx, init = multiprocessing.get_context("spawn"), _rebuild
         args = (np.asarray(mesh.vertices, dtype=np.float64),
                 np.asarray(mesh.faces, dtype=np.int64), settings)
-    workers, done = _Workers(), False
+    workers, done, thread = _Workers(), False, None
     try:
         workers.start(ctx, jobs, init, args)
+        if beside is not None:
+            thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
+                                      name="recon3d-beside")
+            thread.start()
         _run_pool(workers, tasks, settings, out, progress)
         done = True
     finally:
         _STATE = None
         workers.stop(graceful=done)
+        if thread is not None:
+            thread.join()
     return out

@@ -26,6 +26,7 @@ import slicer
 from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
 from core2d.truth.reachability import reachable_samples
+from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
 
 __all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics"]
@@ -144,7 +145,14 @@ class WorkerState:
         """Sense slice ``index`` of ``family`` and score it against its reference
         (at ``eps`` instead of the run's, tol scaled alike, when given).
 
-        The returned SliceRun has ``slice=None`` (the parent holds the slices)."""
+        The returned SliceRun has ``slice=None`` (the parent holds the slices) and its rows
+        of ``motions.csv`` (``motion_rows``, made here, beside the other workers)."""
+        srun = self._sense(family, index, eps)
+        srun.motion_rows = slice_rows(srun, self.families[family][index].plane)
+        return srun
+
+    def _sense(self, family: int, index: int, eps: float | None) -> SliceRun:
+        """:meth:`sense` without the motion rows."""
         st = self.settings
         if eps is not None:
             st = replace(st, eps=float(eps), tol=st.tol * float(eps) / st.eps)

@@ -1,0 +1,96 @@
+"""The scores' fast paths give the numbers of the slow ones.
+
+* :func:`recon3d.score.closest.mesh_distances` (the coloured ground truth's distances)
+  equals VTK's exact distances up to rounding, near a surface, far from it and inside it.
+* The two VTK distance calls of :func:`recon3d.score.evaluate.surface_metrics` run side by
+  side (the ground truth's points split between them, one half in a forked child) give the
+  very metrics of one call after the other.
+"""
+import numpy as np
+import pytest
+import trimesh
+
+from recon3d.api import _side_by_side
+from recon3d.score.closest import mesh_distances
+from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, distances,
+                                    one_after_other, surface_metrics)
+
+
+def _meshes():
+    box = trimesh.creation.box(extents=(2.0, 1.0, 0.5))
+    ring = trimesh.creation.annulus(0.5, 1.0, 0.4)
+    sphere = trimesh.creation.icosphere(subdivisions=4)
+    return [box, ring, sphere]
+
+
+@pytest.mark.parametrize("k", range(3))
+def test_mesh_distances_equal_vtk(k):
+    mesh = _meshes()[k]
+    rng = np.random.default_rng(k)
+    pts = np.vstack([mesh.sample(3000, seed=k) + rng.normal(scale=0.01, size=(3000, 3)),
+                     rng.normal(size=(1000, 3)),             # inside and around
+                     rng.normal(size=(200, 3)) * 30.0,       # far away
+                     mesh.vertices[:50]])                    # on the surface
+    on = min(50, len(mesh.vertices))
+    ours = mesh_distances(pts, mesh.vertices, mesh.faces)
+    vtk = distances(pts, mesh)
+    assert ours.shape == (len(pts),)
+    np.testing.assert_allclose(ours, vtk, rtol=1e-9, atol=1e-12)
+    assert np.all(ours[-on:] <= 1e-12)
+
+
+def test_mesh_distances_hierarchy_prunes_nothing_it_needs():
+    """A point nearest a triangle far down the hierarchy's order (the last face) still finds it."""
+    mesh = trimesh.creation.icosphere(subdivisions=5)
+    c = mesh.triangles_center
+    far = c / np.linalg.norm(c, axis=1, keepdims=True) * 1.5
+    ours = mesh_distances(far, mesh.vertices, mesh.faces)
+    np.testing.assert_allclose(ours, distances(far, mesh), rtol=1e-9)
+
+
+def test_mesh_distances_refuses_an_empty_mesh():
+    with pytest.raises(ValueError, match="no faces"):
+        mesh_distances(np.zeros((1, 3)), np.zeros((0, 3)), np.zeros((0, 3), int))
+
+
+def _case():
+    gt_mesh = trimesh.creation.icosphere(subdivisions=4, radius=10.0)
+    rec = trimesh.creation.icosphere(subdivisions=3, radius=10.3)
+    rec.face_attributes["label"] = np.ones(len(rec.faces), dtype=np.int32)
+    dom = Domain(np.array([[0.0, 0.0, 1.0]]), np.array([-6.0]), np.array([6.0]))
+    gt = GroundTruthSamples(gt_mesh, dom, count=6000)
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    pts = np.column_stack([10 * np.cos(t), 10 * np.sin(t), np.zeros_like(t)])
+    cloud = ContourCloud(pts, t < 4.0, t < 2.0, np.zeros(len(t), int), dom)
+    return rec, gt, cloud
+
+
+def test_side_by_side_metrics_equal_serial():
+    rec, gt, cloud = _case()
+    serial = surface_metrics(rec, gt, cloud, count=6000)
+    calls = []
+
+    def pair(first, second):
+        calls.append(1)
+        return _side_by_side(first, second)
+
+    forked = surface_metrics(rec, gt, cloud, count=6000, pair=pair)
+    assert calls == [1]
+    assert forked == serial  # the very numbers, not approximately
+
+
+def test_pair_gets_both_halves_of_the_ground_truth():
+    """Each call of the pair measures a share of the ground truth's points: dropping the
+    split (one call doing all of them) would change what the first call returns."""
+    rec, gt, cloud = _case()
+    seen = {}
+
+    def pair(first, second):
+        a, b = one_after_other(first, second)
+        seen["first"], seen["second"] = a, b
+        return a, b
+
+    surface_metrics(rec, gt, cloud, count=6000, pair=pair)
+    d_rec, d_gt0 = seen["first"]
+    assert len(d_gt0) + len(seen["second"]) == len(gt.points)
+    assert 0 < len(d_gt0) < len(gt.points)

@@ -1,0 +1,51 @@
+"""The parent's own preparation runs while its sensing workers sense (``beside``).
+
+:func:`recon3d.sensing.sense_mesh` hands ``beside`` to the pool: with worker processes it
+runs once per pool in a thread of the parent, after the workers are forked, and is done
+before the sensing returns (nothing forks while it runs); with ``jobs=1`` it is not called.
+"""
+import multiprocessing
+import os
+import threading
+import time
+
+import meshes
+from recon3d.sensing import sense_mesh
+from recon3d.spellings import make_config
+
+
+def _record(calls, back=None):
+    def beside():
+        children = [p.name for p in multiprocessing.active_children()]
+        if back is not None:  # still running when every slice is back
+            back.wait(60)
+            time.sleep(0.5)
+        calls.append((os.getpid(), threading.current_thread() is threading.main_thread(),
+                      children))
+    return beside
+
+
+def test_beside_runs_in_a_thread_of_the_parent_while_workers_sense():
+    mesh = meshes.load("stepped_pyramid")
+    calls, seen, back = [], [], threading.Event()
+
+    def progress(srun):
+        seen.append(srun)
+        if len(seen) == 2:
+            back.set()
+
+    run = sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs=2), progress,
+                     beside=_record(calls, back))
+    assert len(run.slices) == 2
+    assert len(calls) == 1  # done before sense_mesh returned
+    pid, main, children = calls[0]
+    assert pid == os.getpid() and not main
+    assert "recon3d-sensing" in children  # the workers were forked before it started
+    assert not [t for t in threading.enumerate() if t.name == "recon3d-beside"]
+
+
+def test_beside_not_called_in_one_process():
+    mesh = meshes.load("stepped_pyramid")
+    calls = []
+    sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs=1), beside=_record(calls))
+    assert calls == []

@@ -79,6 +79,19 @@ def test_breaking_points_crash_budget_and_drop():
     assert got["m4"] == (None, "")
 
 
+def test_sensor_factors_break_on_the_coverage_the_sensor_allows():
+    """Noise moves every reported contact: the strict coverage (within eps/2)
+    drops with sigma by construction, the method breaks only when the
+    coverage within eps/2 + 2 sigma drops."""
+    rows = []
+    for factor in ("noise", "f"):
+        for value, strict, sensor in ((0, 1.0, 1.0), (1, 0.8, 0.98), (2, 0.7, 0.9)):
+            rows.append({**_s(value, "m", strict), "factor": factor, "coverage_sensor": sensor})
+    got = {b["factor"]: (b["breaks_at"], b["why"]) for b in breaking_points(rows)}
+    assert got["noise"] == (2, "coverage_sensor 0.900 (from 1.000)")
+    assert got["f"][0] == 1 and got["f"][1].startswith("coverage ")
+
+
 def test_write_csv_leaves_nan_empty(tmp_path):
     write_csv(tmp_path / "x.csv", [{"a": 1, "b": math.nan}, {"a": 2, "c": "z"}])
     rows = list(csv.DictReader(open(tmp_path / "x.csv")))

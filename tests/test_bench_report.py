@@ -115,3 +115,36 @@ def test_charts_write_pngs(tmp_path):
     for name, width in (("p.png", 1800), ("b.png", 1000), ("s.png", 1400), ("n.png", 1200)):
         img = mpimg.imread(tmp_path / name)
         assert img.shape[1] >= width and img.std() > 0.01
+
+
+def test_redraw_remakes_the_files_from_the_csvs_and_merges_parts(tmp_path):
+    """Parts run apart are merged by ``--redraw`` into the files one run
+    writes: the CSVs read back with their types (a round trip is byte for
+    byte), the breaking points recomputed, the charts drawn."""
+    from recon3d.benchmark.redraw import load_rows, read_csv, redraw
+    from recon3d.benchmark.run3d import write_outputs
+
+    stab = [dict(_s(v, m, c), coverage_sensor=c, motions=10, factor="noise")
+            for v, m, c in ((0.0, "m1", 1.0), (0.3, "m1", 0.9), (0.0, "m2", 1.0), (0.3, "m2", 1.0))]
+    stab.append(dict(_s("twin_posts", "m1", 0.97), coverage_sensor=math.nan, motions=5,
+                     factor="islands/holes"))
+    base = [_b("pulling", 0.99, 100, 1000), _b("finger", 0.95, 50, 500, 8, 2)]
+    task = {"case": "", "factor": "", "value": math.nan, "slices": math.nan,
+            "eps_share": math.nan, "seconds": 1.5, "error": ""}
+    write_outputs(tmp_path / "a", {"stability": stab}, [dict(task, part="stability")], QUICK, True)
+    write_outputs(tmp_path / "b", {"baseline": base}, [dict(task, part="baseline")], QUICK, True)
+    back = read_csv(tmp_path / "a" / "stability.csv")
+    assert back[1]["value"] == 0.3 and back[0]["crashed"] is False and back[4]["value"] == "twin_posts"
+    assert math.isnan(back[4]["coverage_sensor"]) and back[0]["error"] == ""
+    lines = redraw([tmp_path / "a", tmp_path / "b"], tmp_path / "c")
+    assert lines[0] == "recon3d bench --quick: 2 tasks"
+    for name in ("stability.csv", "breaks.csv", "baseline.csv", "baseline_ratios.csv"):
+        src = tmp_path / ("a" if name in ("stability.csv", "breaks.csv") else "b") / name
+        assert (tmp_path / "c" / name).read_bytes() == src.read_bytes()
+    got = {b["method"]: b["breaks_at"] for b in read_csv(tmp_path / "c" / "breaks.csv")
+           if b["factor"] == "noise"}
+    assert got["m1"] == 0.3 and math.isnan(got["m2"])  # m2 never breaks
+    for png in ("stability.png", "sensor.png", "baseline.png"):
+        assert (tmp_path / "c" / png).stat().st_size > 10_000
+    with pytest.raises(ValueError, match="found twice"):
+        load_rows([tmp_path / "a", tmp_path / "c"])

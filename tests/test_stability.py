@@ -119,6 +119,7 @@ def res_eps(mesh):
     (["bench", "--out", "{d}", "--parts", "speed"], "--parts"),
     (["bench", "--out", "{f}"], "--out"),
     (["bench", "--out", "{d}", "--workers", "0"], "--workers"),
+    (["bench", "--out", "{d}", "--redraw", "{f}"], "--redraw: "),
 ])
 def test_bad_bench_and_auto_flags_are_one_line_exit_2(tmp_path, capsys, argv, message):
     f = tmp_path / "file"

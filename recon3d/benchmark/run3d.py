@@ -24,7 +24,7 @@ from recon3d.benchmark import backends, baseline, charts, claims, pareto, stabil
 from recon3d.io.staged import Staged
 from recon3d.jobs.cluster import run_tasks
 
-__all__ = ["PARTS", "run_bench", "dispatch", "write_csv"]
+__all__ = ["PARTS", "run_bench", "write_outputs", "dispatch", "write_csv"]
 
 PARTS = ("pareto", "backends", "baseline", "stability", "claims")
 
@@ -115,7 +115,17 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
         timing.append({"part": t["part"], **{k: t.get(k) for k in (
             "case", "factor", "value", "slices", "eps_share")}, "seconds": r["seconds"],
             "error": r["error"]})
-    lines = [f"recon3d bench{' --quick' if quick else ''}: {len(tasks)} tasks"]
+    return write_outputs(out, by, timing, plan, quick)
+
+
+def write_outputs(out, by: dict, timing: list[dict], plan: dict, quick: bool) -> list[str]:
+    """Every file of a bench run from its rows: ``by`` part -> rows (the
+    CSVs' contents), ``timing`` one dict per task (tasks.csv), ``plan`` the
+    pareto sweep (:data:`.pareto.FULL` or ``QUICK``). Writes CSVs, charts and
+    table.txt into ``out`` (staged: all or nothing); the table's lines."""
+    by = {p: by.get(p, []) for p in PARTS}
+    parts = [p for p in PARTS if any(t["part"] == p for t in timing)]
+    lines = [f"recon3d bench{' --quick' if quick else ''}: {len(timing)} tasks"]
     with Staged(out) as stage:
         if by["pareto"]:
             rows = sorted(by["pareto"], key=lambda r: (r["case"], r["method"], r["eps_share"],

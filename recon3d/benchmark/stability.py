@@ -244,7 +244,7 @@ def breaking_points(rows, drop: float = 0.05) -> list[dict]:
         metric = score_key(factor, method)
 
         def score(v):
-            xs = [r[metric] for r in sel if r["value"] == v]
+            xs = [r.get(metric, np.nan) for r in sel if r["value"] == v]
             return float(np.nanmean(xs)) if np.isfinite(xs).any() else np.nan
 
         ref = score(values[0])

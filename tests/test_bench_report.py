@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 
 from recon3d.benchmark.baseline import equal_coverage
-from recon3d.benchmark.charts import baseline_chart, pareto_chart, sensor_chart, stability_chart
+from recon3d.benchmark.charts import baseline_chart, pareto_chart
 from recon3d.benchmark.pareto import FULL, QUICK, adaptive_summary, pareto_front
 from recon3d.benchmark.run3d import write_csv
 from recon3d.benchmark.stability import breaking_points
+from recon3d.benchmark.stability_charts import sensor_chart, stability_chart
 
 
 def _p(case, method, slices, share, wall, cd, cov, f1=0.9, cpu=None, robot=100.0):
@@ -148,3 +149,16 @@ def test_redraw_remakes_the_files_from_the_csvs_and_merges_parts(tmp_path):
         assert (tmp_path / "c" / png).stat().st_size > 10_000
     with pytest.raises(ValueError, match="found twice"):
         load_rows([tmp_path / "a", tmp_path / "c"])
+
+
+def test_a_method_keeps_its_style_on_both_stability_charts():
+    """stability.png and sensor.png list different methods; each keeps its
+    colour and marker (the sensor chart lacks the 3D rows, trimesh in --quick)."""
+    from recon3d.benchmark.stability_charts import _style
+
+    every = ["pulling/embree", "pulling/exact", "pulling/trimesh", "finger/embree",
+             "paper/embree", "follow/embree", "pulling/embree 3D"]
+    some = ["paper/embree", "finger/embree", "pulling/embree"]
+    a, b = _style(every), _style(some)
+    assert all(a[m][:2] == b[m][:2] for m in some)
+    assert len({a[m][:2] for m in every}) == len(every)

@@ -20,7 +20,8 @@ import logging
 import math
 import time
 
-from recon3d.benchmark import backends, baseline, charts, claims, pareto, stability
+from recon3d.benchmark import (backends, baseline, charts, claims, pareto, stability,
+                                stability_charts)
 from recon3d.io.staged import Staged
 from recon3d.jobs.cluster import run_tasks
 
@@ -173,9 +174,9 @@ def write_outputs(out, by: dict, timing: list[dict], plan: dict, quick: bool) ->
             breaks = stability.breaking_points(rows)
             write_csv(stage / "stability.csv", rows)
             write_csv(stage / "breaks.csv", breaks)
-            charts.stability_chart(rows, breaks, stage / "stability.png")
+            stability_charts.stability_chart(rows, breaks, stage / "stability.png")
             if any(r["factor"] in stability.SENSOR_FACTORS for r in rows):
-                charts.sensor_chart(rows, stage / "sensor.png")
+                stability_charts.sensor_chart(rows, stage / "sensor.png")
             lines.append("\nstability: where each method breaks (first value; none = never):")
             _table(lines, ["factor", "method", "breaks at", "why"], breaks,
                    ["factor", "method", "breaks_at", "why"], ["", "", "g", ""])

@@ -44,7 +44,7 @@ def pareto_chart(rows, fronts, path) -> None:
     cases = list(dict.fromkeys(r["case"] for r in rows))
     col = _colours(cases)
     slices = [r["slices"] for r in rows if r["method"] == "uniform"] or [1]
-    fig, axes = plt.subplots(1, 3, figsize=(19, 6.2), constrained_layout=True)
+    fig, axes = plt.subplots(1, 3, figsize=(19, 6.8), constrained_layout=True)
     panels = (("chamfer_l1_diag", "Chamfer-L1 / diagonal (log; lower is better)"),
               ("fscore_1", "F-score at 1 % of the diagonal (higher is better)"),
               ("coverage", "2D reachable coverage (higher is better)"))
@@ -69,12 +69,16 @@ def pareto_chart(rows, fronts, path) -> None:
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
     lo, hi = min(slices), max(slices)
-    axes[2].scatter([], [], marker="*", s=200, color="grey", edgecolors="black",
-                    label="adaptive (--slices auto)")
-    axes[2].plot([], [], "-", color="grey", label="Pareto front (per case)")
-    axes[2].scatter([], [], s=10 + 3 * lo, color="grey", label=f"uniform, {lo} slices")
-    axes[2].scatter([], [], s=10 + 3 * hi, color="grey", label=f"uniform, {hi} slices")
-    axes[2].legend(loc="lower right", fontsize=9)
+    ax = axes[2]
+    ax.scatter([], [], marker="*", s=200, color="white", edgecolors="black",
+               label="adaptive (--slices auto)")
+    ax.plot([], [], "-", color="black", label="Pareto front (per case)")
+    for n in (lo, hi):
+        ax.scatter([], [], s=10 + 3 * n, color="white", edgecolors="black",
+                   label=f"uniform, {n} slices")
+    handles, labels = ax.get_legend_handles_labels()  # below the panels: no data hidden
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=10,
+               markerscale=0.8)
     fig.suptitle("Speed against accuracy: eps x slice count per case (one colour per case, "
                  "dot area = slices; line = Pareto front; star = --slices auto)")
     fig.savefig(path, dpi=100)
@@ -92,7 +96,7 @@ def baseline_chart(rows, path) -> None:
                      key=lambda r: r["robot_time_s"])
         pull = [r for r in rows if r["case"] == case and r["method"] == "pulling"]
         ax.scatter([r["robot_time_s"] for r in fin], [r["coverage"] for r in fin], s=22,
-                   color=col[case], alpha=0.7, label=f"{case}: finger probing (one density)")
+                   color=col[case], alpha=0.7, label=case)
         best, front = -1.0, []  # the best coverage finger probing reaches within a robot time
         for r in fin:
             if r["coverage"] > best:
@@ -102,11 +106,14 @@ def baseline_chart(rows, path) -> None:
                 where="post", color=col[case], lw=1.3, alpha=0.9)
         ax.scatter([r["robot_time_s"] for r in pull], [r["coverage"] for r in pull], marker="*",
                    s=300, color=col[case], edgecolors="black", zorder=5)
-    ax.scatter([], [], marker="*", s=200, color="grey", edgecolors="black",
+    # the key's symbols white / black: no case colour (tab10 has grey) is taken for them
+    ax.scatter([], [], s=22, color="white", edgecolors="black",
+               label="finger probing, one density (dot)")
+    ax.scatter([], [], marker="*", s=200, color="white", edgecolors="black",
                label="pulling (the paper's algorithm)")
-    ax.plot([], [], "-", color="grey", label="finger probing: best coverage within a robot time")
+    ax.plot([], [], "-", color="black", label="finger probing: best coverage within a robot time")
     ax.axhline(0.99, color="black", lw=0.8, ls="--")
-    ax.text(0.99, 0.99, "99 %", va="bottom", ha="right", fontsize=9,
+    ax.text(0.01, 0.985, "99 %", va="top", ha="left", fontsize=9,
             transform=ax.get_yaxis_transform())
     _plain_log_x(ax)
     ax.set_xlabel("robot time, s (log): joint path / probe speed + motions x overhead")

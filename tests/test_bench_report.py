@@ -162,3 +162,15 @@ def test_a_method_keeps_its_style_on_both_stability_charts():
     a, b = _style(every), _style(some)
     assert all(a[m][:2] == b[m][:2] for m in some)
     assert len({a[m][:2] for m in every}) == len(every)
+
+
+def test_the_sweep_runs_slice_counts_above_extent_over_eps():
+    """The full sweep has 32 slices at eps = diagonal / 25 (more than extent /
+    eps): such a run is a point of the chart, not an error (recon3d.run
+    refuses it without force)."""
+    from recon3d.benchmark.pareto import run_case
+
+    # fig17_pocket: extent / eps = 40 / 4.75 = 8 at eps = diagonal / 25
+    row = run_case({"case": "fig17_pocket", "source": "fig17_pocket", "method": "uniform",
+                    "slices": 9, "eps_share": 1 / 25})
+    assert row["slices"] == 9 and row["fscore_1"] > 0.9 and row["cpu_s"] > 0

@@ -4,7 +4,8 @@ Sweep eps x slices (uniform and --slices auto), compare the contact
 backends, dense finger probing against pulling, the stability of each
 method, and pulling against a pushing contour follower under tip friction; write CSV + PNG into DIR and print a short table (README 'recon3d
 bench'). Runs on Dask: a local cluster by default, an existing one with
---scheduler.
+--scheduler. ``--redraw DIR[,DIR...]`` re-makes the files of earlier
+outputs from their CSVs (no sensing; parts run apart are merged).
 """
 from __future__ import annotations
 

@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 
 from recon3d.benchmark.baseline import equal_coverage
-from recon3d.benchmark.charts import baseline_chart, pareto_chart, sensor_chart, stability_chart
+from recon3d.benchmark.charts import baseline_chart, pareto_chart
 from recon3d.benchmark.pareto import FULL, QUICK, adaptive_summary, pareto_front
 from recon3d.benchmark.run3d import write_csv
 from recon3d.benchmark.stability import breaking_points
+from recon3d.benchmark.stability_charts import sensor_chart, stability_chart
 
 
 def _p(case, method, slices, share, wall, cd, cov, f1=0.9, cpu=None, robot=100.0):
@@ -79,6 +80,19 @@ def test_breaking_points_crash_budget_and_drop():
     assert got["m4"] == (None, "")
 
 
+def test_sensor_factors_break_on_the_coverage_the_sensor_allows():
+    """Noise moves every reported contact: the strict coverage (within eps/2)
+    drops with sigma by construction, the method breaks only when the
+    coverage within eps/2 + 2 sigma drops."""
+    rows = []
+    for factor in ("noise", "f"):
+        for value, strict, sensor in ((0, 1.0, 1.0), (1, 0.8, 0.98), (2, 0.7, 0.9)):
+            rows.append({**_s(value, "m", strict), "factor": factor, "coverage_sensor": sensor})
+    got = {b["factor"]: (b["breaks_at"], b["why"]) for b in breaking_points(rows)}
+    assert got["noise"] == (2, "coverage_sensor 0.900 (from 1.000)")
+    assert got["f"][0] == 1 and got["f"][1].startswith("coverage ")
+
+
 def test_write_csv_leaves_nan_empty(tmp_path):
     write_csv(tmp_path / "x.csv", [{"a": 1, "b": math.nan}, {"a": 2, "c": "z"}])
     rows = list(csv.DictReader(open(tmp_path / "x.csv")))
@@ -102,3 +116,61 @@ def test_charts_write_pngs(tmp_path):
     for name, width in (("p.png", 1800), ("b.png", 1000), ("s.png", 1400), ("n.png", 1200)):
         img = mpimg.imread(tmp_path / name)
         assert img.shape[1] >= width and img.std() > 0.01
+
+
+def test_redraw_remakes_the_files_from_the_csvs_and_merges_parts(tmp_path):
+    """Parts run apart are merged by ``--redraw`` into the files one run
+    writes: the CSVs read back with their types (a round trip is byte for
+    byte), the breaking points recomputed, the charts drawn."""
+    from recon3d.benchmark.redraw import load_rows, read_csv, redraw
+    from recon3d.benchmark.run3d import write_outputs
+
+    stab = [dict(_s(v, m, c), coverage_sensor=c, motions=10, factor="noise")
+            for v, m, c in ((0.0, "m1", 1.0), (0.3, "m1", 0.9), (0.0, "m2", 1.0), (0.3, "m2", 1.0))]
+    stab.append(dict(_s("twin_posts", "m1", 0.97), coverage_sensor=math.nan, motions=5,
+                     factor="islands/holes"))
+    base = [_b("pulling", 0.99, 100, 1000), _b("finger", 0.95, 50, 500, 8, 2)]
+    task = {"case": "", "factor": "", "value": math.nan, "slices": math.nan,
+            "eps_share": math.nan, "seconds": 1.5, "error": ""}
+    write_outputs(tmp_path / "a", {"stability": stab}, [dict(task, part="stability")], QUICK, True)
+    write_outputs(tmp_path / "b", {"baseline": base}, [dict(task, part="baseline")], QUICK, True)
+    back = read_csv(tmp_path / "a" / "stability.csv")
+    assert back[1]["value"] == 0.3 and back[0]["crashed"] is False and back[4]["value"] == "twin_posts"
+    assert math.isnan(back[4]["coverage_sensor"]) and back[0]["error"] == ""
+    lines = redraw([tmp_path / "a", tmp_path / "b"], tmp_path / "c")
+    assert lines[0] == "recon3d bench --quick: 2 tasks"
+    for name in ("stability.csv", "breaks.csv", "baseline.csv", "baseline_ratios.csv"):
+        src = tmp_path / ("a" if name in ("stability.csv", "breaks.csv") else "b") / name
+        assert (tmp_path / "c" / name).read_bytes() == src.read_bytes()
+    got = {b["method"]: b["breaks_at"] for b in read_csv(tmp_path / "c" / "breaks.csv")
+           if b["factor"] == "noise"}
+    assert got["m1"] == 0.3 and math.isnan(got["m2"])  # m2 never breaks
+    for png in ("stability.png", "sensor.png", "baseline.png"):
+        assert (tmp_path / "c" / png).stat().st_size > 10_000
+    with pytest.raises(ValueError, match="found twice"):
+        load_rows([tmp_path / "a", tmp_path / "c"])
+
+
+def test_a_method_keeps_its_style_on_both_stability_charts():
+    """stability.png and sensor.png list different methods; each keeps its
+    colour and marker (the sensor chart lacks the 3D rows, trimesh in --quick)."""
+    from recon3d.benchmark.stability_charts import _style
+
+    every = ["pulling/embree", "pulling/exact", "pulling/trimesh", "finger/embree",
+             "paper/embree", "follow/embree", "pulling/embree 3D"]
+    some = ["paper/embree", "finger/embree", "pulling/embree"]
+    a, b = _style(every), _style(some)
+    assert all(a[m][:2] == b[m][:2] for m in some)
+    assert len({a[m][:2] for m in every}) == len(every)
+
+
+def test_the_sweep_runs_slice_counts_above_extent_over_eps():
+    """The full sweep has 32 slices at eps = diagonal / 25 (more than extent /
+    eps): such a run is a point of the chart, not an error (recon3d.run
+    refuses it without force)."""
+    from recon3d.benchmark.pareto import run_case
+
+    # fig17_pocket: extent / eps = 40 / 4.75 = 8 at eps = diagonal / 25
+    row = run_case({"case": "fig17_pocket", "source": "fig17_pocket", "method": "uniform",
+                    "slices": 9, "eps_share": 1 / 25})
+    assert row["slices"] == 9 and row["fscore_1"] > 0.9 and row["cpu_s"] > 0

@@ -61,6 +61,8 @@ def test_the_stability_study_senses_with_the_sensor_model():
     base = {r["method"]: r for r in run_factor(tasks[("taxel", 0.0)])}
     rows = run_factor(tasks[("taxel", 1.0)])
     assert {r["method"] for r in rows} == set(base) and len(base) >= 3
+    # every method of core2d.sense_slice: the planners and finger probing
+    assert {m.split("/")[0] for m in base} == {"pulling", "paper", "follow", "finger"}
     for r in rows:
         assert not r["crashed"] and 0 < r["coverage_sensor"] <= 1
     assert any(r["motions"] != base[r["method"]]["motions"] for r in rows)
@@ -117,6 +119,7 @@ def res_eps(mesh):
     (["bench", "--out", "{d}", "--parts", "speed"], "--parts"),
     (["bench", "--out", "{f}"], "--out"),
     (["bench", "--out", "{d}", "--workers", "0"], "--workers"),
+    (["bench", "--out", "{d}", "--redraw", "{f}"], "--redraw: "),
 ])
 def test_bad_bench_and_auto_flags_are_one_line_exit_2(tmp_path, capsys, argv, message):
     f = tmp_path / "file"

@@ -1,6 +1,7 @@
 """Matplotlib charts of ``recon3d bench`` (plotting kept apart from the data).
 
-Every function takes the rows written to the matching CSV and a PNG path.
+Every function takes the rows written to the matching CSV and a PNG path
+(the stability study's charts: :mod:`.stability_charts`).
 """
 from __future__ import annotations
 
@@ -8,8 +9,7 @@ import numpy as np
 
 from recon3d.viz import libs
 
-__all__ = ["pareto_chart", "baseline_chart", "stability_chart", "sensor_chart",
-           "claims_chart"]
+__all__ = ["pareto_chart", "baseline_chart", "claims_chart"]
 
 
 def _plt():
@@ -44,7 +44,7 @@ def pareto_chart(rows, fronts, path) -> None:
     cases = list(dict.fromkeys(r["case"] for r in rows))
     col = _colours(cases)
     slices = [r["slices"] for r in rows if r["method"] == "uniform"] or [1]
-    fig, axes = plt.subplots(1, 3, figsize=(19, 6.2), constrained_layout=True)
+    fig, axes = plt.subplots(1, 3, figsize=(19, 6.8), constrained_layout=True)
     panels = (("chamfer_l1_diag", "Chamfer-L1 / diagonal (log; lower is better)"),
               ("fscore_1", "F-score at 1 % of the diagonal (higher is better)"),
               ("coverage", "2D reachable coverage (higher is better)"))
@@ -69,12 +69,16 @@ def pareto_chart(rows, fronts, path) -> None:
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
     lo, hi = min(slices), max(slices)
-    axes[2].scatter([], [], marker="*", s=200, color="grey", edgecolors="black",
-                    label="adaptive (--slices auto)")
-    axes[2].plot([], [], "-", color="grey", label="Pareto front (per case)")
-    axes[2].scatter([], [], s=10 + 3 * lo, color="grey", label=f"uniform, {lo} slices")
-    axes[2].scatter([], [], s=10 + 3 * hi, color="grey", label=f"uniform, {hi} slices")
-    axes[2].legend(loc="lower right", fontsize=9)
+    ax = axes[2]
+    ax.scatter([], [], marker="*", s=200, color="white", edgecolors="black",
+               label="adaptive (--slices auto)")
+    ax.plot([], [], "-", color="black", label="Pareto front (per case)")
+    for n in (lo, hi):
+        ax.scatter([], [], s=10 + 3 * n, color="white", edgecolors="black",
+                   label=f"uniform, {n} slices")
+    handles, labels = ax.get_legend_handles_labels()  # below the panels: no data hidden
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=10,
+               markerscale=0.8)
     fig.suptitle("Speed against accuracy: eps x slice count per case (one colour per case, "
                  "dot area = slices; line = Pareto front; star = --slices auto)")
     fig.savefig(path, dpi=100)
@@ -92,7 +96,7 @@ def baseline_chart(rows, path) -> None:
                      key=lambda r: r["robot_time_s"])
         pull = [r for r in rows if r["case"] == case and r["method"] == "pulling"]
         ax.scatter([r["robot_time_s"] for r in fin], [r["coverage"] for r in fin], s=22,
-                   color=col[case], alpha=0.7, label=f"{case}: finger probing (one density)")
+                   color=col[case], alpha=0.7, label=case)
         best, front = -1.0, []  # the best coverage finger probing reaches within a robot time
         for r in fin:
             if r["coverage"] > best:
@@ -102,11 +106,14 @@ def baseline_chart(rows, path) -> None:
                 where="post", color=col[case], lw=1.3, alpha=0.9)
         ax.scatter([r["robot_time_s"] for r in pull], [r["coverage"] for r in pull], marker="*",
                    s=300, color=col[case], edgecolors="black", zorder=5)
-    ax.scatter([], [], marker="*", s=200, color="grey", edgecolors="black",
+    # the key's symbols white / black: no case colour (tab10 has grey) is taken for them
+    ax.scatter([], [], s=22, color="white", edgecolors="black",
+               label="finger probing, one density (dot)")
+    ax.scatter([], [], marker="*", s=200, color="white", edgecolors="black",
                label="pulling (the paper's algorithm)")
-    ax.plot([], [], "-", color="grey", label="finger probing: best coverage within a robot time")
+    ax.plot([], [], "-", color="black", label="finger probing: best coverage within a robot time")
     ax.axhline(0.99, color="black", lw=0.8, ls="--")
-    ax.text(0.99, 0.99, "99 %", va="bottom", ha="right", fontsize=9,
+    ax.text(0.01, 0.985, "99 %", va="top", ha="left", fontsize=9,
             transform=ax.get_yaxis_transform())
     _plain_log_x(ax)
     ax.set_xlabel("robot time, s (log): joint path / probe speed + motions x overhead")
@@ -116,78 +123,6 @@ def baseline_chart(rows, path) -> None:
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def _x(rows, factor):
-    """x values of a factor (eps / edge length for eps; categories as positions)."""
-    vals = list(dict.fromkeys(r["value"] for r in rows))
-    if isinstance(vals[0], str):
-        return {v: i for i, v in enumerate(vals)}, vals
-    return {v: float(v) for v in vals}, None
-
-
-def stability_chart(rows, breaks, path) -> None:
-    """One panel per factor: coverage (or F@1% for 3D rows) per method; crashes
-    (red x), budget hits (black triangles) and each method's breaking point
-    (vertical dashed line) marked."""
-    plt = _plt()
-    factors = list(dict.fromkeys(r["factor"] for r in rows))
-    methods = list(dict.fromkeys(r["method"] for r in rows))
-    col = _colours(methods)
-    ncol = 3
-    nrow = int(np.ceil(len(factors) / ncol))
-    fig, axes = plt.subplots(nrow, ncol, figsize=(15, 4.2 * nrow), constrained_layout=True,
-                             squeeze=False)
-    for ax, factor in zip(axes.ravel(), factors):
-        sel = [r for r in rows if r["factor"] == factor]
-        xmap, cats = _x(sel, factor)
-        for m in methods:
-            rs = [r for r in sel if r["method"] == m]
-            if not rs:
-                continue
-            key = "fscore_1" if m.endswith("3D") or factor == "mesh defects" else "coverage"
-            xs = sorted(set(xmap[r["value"]] for r in rs))
-            ys = [np.nanmean([r[key] for r in rs if xmap[r["value"]] == x] or [np.nan])
-                  if any(np.isfinite(r[key]) for r in rs if xmap[r["value"]] == x) else np.nan
-                  for x in xs]
-            lab = f"{m} ({'F@1%' if key == 'fscore_1' else 'coverage'})"
-            k = methods.index(m)  # overlapping curves stay visible: shrinking markers
-            ax.plot(xs, ys, ("-" if key == "coverage" else "--") + "osD^"[k % 4], color=col[m],
-                    label=lab, ms=10 - 2 * (k % 4), mfc="none" if k % 2 == 0 else col[m],
-                    lw=2.4 - 0.5 * (k % 4), alpha=0.85)
-            for r in rs:
-                x = xmap[r["value"]]
-                if r["crashed"]:
-                    ax.scatter([x], [0.02], marker="x", color="red", s=80, zorder=5)
-                elif r["budget_hit"]:
-                    y = r[key] if np.isfinite(r[key]) else 0.05
-                    ax.scatter([x], [y], marker="v", color="black", s=45, zorder=5)
-            b = next((b for b in breaks if b["factor"] == factor and b["method"] == m), None)
-            if b is not None and b["breaks_at"] is not None:
-                ax.axvline(xmap[b["breaks_at"]], color=col[m], ls=":", lw=1.5)
-        if cats is not None:
-            ax.set_xticks(range(len(cats)), cats)
-        elif factor in ("plane offset", "eps / edge"):
-            ax.set_xscale("log")
-            ax.minorticks_off()
-        elif factor in ("noise", "taxel"):
-            ax.set_xscale("symlog", linthresh=0.01)
-            ax.set_xlim(-0.002, max(xmap.values()) * 1.3)
-        unit = {"plane offset": "offset above a vertex / face, x diagonal",
-                "noise": "contact noise sigma / eps", "taxel": "taxel spacing / eps",
-                "resolution": "segments per circle",
-                "eps / edge": "eps / median mesh edge length"}.get(factor, "degrees")
-        ax.set_xlabel(unit if cats is None else "")
-        ax.set_ylim(-0.03, 1.05)
-        ax.set_title(factor)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="lower left")
-    for ax in axes.ravel()[len(factors):]:
-        ax.axis("off")
-    fig.suptitle("Stability: coverage / F@1% per method; x = crash, triangle = budget hit, "
-                 "dotted line = where the method breaks (crash, budget, or a drop > 0.05)")
-    fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
@@ -233,47 +168,5 @@ def claims_chart(rows, path) -> None:
     fig.suptitle("Pulling against pushing under Coulomb friction at the tip, middle z-slice "
                  "per case\n(a push with the rod inside the friction cone jams; pulls slide; "
                  "overlapping lines are shifted slightly in mu)")
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-
-
-def sensor_chart(rows, path, factors=("noise", "taxel")) -> None:
-    """The stability study's sensor factors: per factor, motions (log) and
-    reachable coverage within eps/2 + 2 sigma per method, against the
-    sensor figure in eps; budget hits (black triangles) marked on both."""
-    plt = _plt()
-    factors = [f for f in factors if any(r["factor"] == f for r in rows)]
-    methods = list(dict.fromkeys(r["method"] for r in rows if r["factor"] in factors))
-    col = _colours(methods)
-    fig, axes = plt.subplots(2, max(len(factors), 1), figsize=(6.5 * max(len(factors), 1), 8),
-                             constrained_layout=True, squeeze=False)
-    for j, factor in enumerate(factors):
-        sel = [r for r in rows if r["factor"] == factor]
-        for i, (key, label) in enumerate((("motions", "motions per slice"),
-                                          ("coverage_sensor", "coverage within eps/2 + 2 sigma"))):
-            ax = axes[i, j]
-            for k, m in enumerate(methods):
-                rs = sorted((r for r in sel if r["method"] == m), key=lambda r: r["value"])
-                if not rs:
-                    continue
-                xs = [float(r["value"]) for r in rs]
-                ax.plot(xs, [r[key] for r in rs], "-" + "osD^"[k % 4], color=col[m], label=m,
-                        ms=9 - 2 * (k % 4), mfc="none" if k % 2 == 0 else col[m])
-                hit = [r for r in rs if r["budget_hit"]]
-                ax.scatter([float(r["value"]) for r in hit], [r[key] for r in hit], marker="v",
-                           color="black", s=60, zorder=5)
-            ax.set_xscale("symlog", linthresh=0.01)
-            if key == "motions":
-                ax.set_yscale("log")
-            else:
-                ax.set_ylim(-0.03, 1.05)
-            ax.set_xlabel(("contact noise sigma" if factor == "noise" else "taxel spacing")
-                          + " / eps")
-            ax.set_ylabel(label)
-            ax.set_title(f"{factor}: {label}")
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize=8)
-    fig.suptitle("Stability under a real sensor (core2d.SensorModel), fig18_overhangs middle "
-                 "slice; triangle = budget hit")
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -20,11 +20,12 @@ import logging
 import math
 import time
 
-from recon3d.benchmark import backends, baseline, charts, claims, pareto, stability
+from recon3d.benchmark import (backends, baseline, charts, claims, pareto, stability,
+                                stability_charts)
 from recon3d.io.staged import Staged
 from recon3d.jobs.cluster import run_tasks
 
-__all__ = ["PARTS", "run_bench", "dispatch", "write_csv"]
+__all__ = ["PARTS", "run_bench", "write_outputs", "dispatch", "write_csv"]
 
 PARTS = ("pareto", "backends", "baseline", "stability", "claims")
 
@@ -115,7 +116,17 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
         timing.append({"part": t["part"], **{k: t.get(k) for k in (
             "case", "factor", "value", "slices", "eps_share")}, "seconds": r["seconds"],
             "error": r["error"]})
-    lines = [f"recon3d bench{' --quick' if quick else ''}: {len(tasks)} tasks"]
+    return write_outputs(out, by, timing, plan, quick)
+
+
+def write_outputs(out, by: dict, timing: list[dict], plan: dict, quick: bool) -> list[str]:
+    """Every file of a bench run from its rows: ``by`` part -> rows (the
+    CSVs' contents), ``timing`` one dict per task (tasks.csv), ``plan`` the
+    pareto sweep (:data:`.pareto.FULL` or ``QUICK``). Writes CSVs, charts and
+    table.txt into ``out`` (staged: all or nothing); the table's lines."""
+    by = {p: by.get(p, []) for p in PARTS}
+    parts = [p for p in PARTS if any(t["part"] == p for t in timing)]
+    lines = [f"recon3d bench{' --quick' if quick else ''}: {len(timing)} tasks"]
     with Staged(out) as stage:
         if by["pareto"]:
             rows = sorted(by["pareto"], key=lambda r: (r["case"], r["method"], r["eps_share"],
@@ -163,9 +174,9 @@ def run_bench(out, quick: bool = False, scheduler=None, workers=None, parts=PART
             breaks = stability.breaking_points(rows)
             write_csv(stage / "stability.csv", rows)
             write_csv(stage / "breaks.csv", breaks)
-            charts.stability_chart(rows, breaks, stage / "stability.png")
+            stability_charts.stability_chart(rows, breaks, stage / "stability.png")
             if any(r["factor"] in stability.SENSOR_FACTORS for r in rows):
-                charts.sensor_chart(rows, stage / "sensor.png")
+                stability_charts.sensor_chart(rows, stage / "sensor.png")
             lines.append("\nstability: where each method breaks (first value; none = never):")
             _table(lines, ["factor", "method", "breaks at", "why"], breaks,
                    ["factor", "method", "breaks_at", "why"], ["", "", "g", ""])

@@ -8,7 +8,8 @@ Factors (one task each value, :func:`run_factor`):
   ``stepped_pyramid`` (a horizontal face and its vertices), no nudge;
 * ``noise`` -- the sensor of :class:`core2d.SensorModel` with Gaussian noise
   sigma = 0 ... eps on contact positions and joint readings (the project's one
-  noise model), ``fig18_overhangs``, every method;
+  noise model), ``fig18_overhangs``, every method (:data:`SENSOR_METHODS`:
+  the three backends, finger probing, the paper's flow, the contour follower);
 * ``taxel`` -- its taxel spacing 0 ... eps, ``fig18_overhangs``, every method;
 * ``resolution`` -- ``bowl`` at 4 tessellations (3D F@1% for pulling);
 * ``rotation x|y|z`` -- ``fig18_overhangs`` rotated about each axis (3D F@1%);
@@ -20,9 +21,9 @@ Factors (one task each value, :func:`run_factor`):
   dropped) and two overlapping boxes (self-intersecting), whole runs.
 
 Every run uses eps = diagonal / 50 (``eps / edge`` aside) and a budget of
-5000 motions per slice for the pulling planner; the full study takes more
-values of each factor than ``--quick``, and 4 slices instead of 3 in its
-3D runs.
+5000 motions per slice for the planners (finger probing's grid is finite);
+the full study takes more values of each factor than ``--quick``, and 4
+slices instead of 3 in its 3D runs.
 
 A row per (factor, value, method, slice): crashed (and the error), budget
 hit, reachable coverage (and, for the sensor factors, within the sensor's
@@ -47,10 +48,18 @@ from core2d.truth.metrics import sensor_metrics, slice_metrics
 from recon3d.benchmark.cases import workspace
 from recon3d.config import diagonal
 
-__all__ = ["stability_tasks", "run_factor", "breaking_points", "METHODS", "SENSOR_FACTORS"]
+__all__ = ["stability_tasks", "run_factor", "breaking_points", "score_key", "METHODS", "SENSOR_METHODS",
+           "SENSOR_FACTORS"]
 
 METHODS = (("pulling", "embree"), ("pulling", "exact"), ("pulling", "trimesh"),
            ("finger", "embree"))
+"""The methods every factor of geometry compares: the pulling planner on each
+contact backend and finger probing."""
+
+SENSOR_METHODS = METHODS + (("paper", "embree"), ("follow", "embree"))
+"""The sensor factors add the other planners of :func:`core2d.sense_slice`: the
+paper's Fig. 16 flow alone (§4.2) and the pushing contour follower (Fig. 2(a)),
+so noise and taxels are measured on every method."""
 
 
 #: factors whose value is a sensor figure in eps (:class:`core2d.SensorModel`)
@@ -87,7 +96,7 @@ def _sense(slc, eps, method, backend, sensor=None, max_motions=20000):
     perfect); a row fragment (crash caught and reported)."""
     t0 = time.perf_counter()
     try:
-        budget = max_motions if method == "pulling" else 10 ** 7  # a finger grid is finite
+        budget = max_motions if method != "finger" else 10 ** 7  # a finger grid is finite
         res = sense_slice(slc.contact(backend), workspace(slc, eps), eps, method=method,
                           max_motions=budget, sensor=sensor)
         loops = [np.asarray(lp) for lp in slc.loops]
@@ -119,8 +128,11 @@ def _run3d(mesh, slices, eps=None):
 
 
 def _methods(task, quick):
-    """The methods a factor compares (trimesh only where the geometry of contact matters)."""
-    if task["factor"] in ("plane offset", "eps / edge") + SENSOR_FACTORS:
+    """The methods a factor compares (trimesh only where the geometry of contact
+    matters; every planner for the sensor factors)."""
+    if task["factor"] in SENSOR_FACTORS:
+        return tuple(m for m in SENSOR_METHODS if not quick or m[1] != "trimesh")
+    if task["factor"] in ("plane offset", "eps / edge"):
         return METHODS if not quick or task["factor"] == "plane offset" else METHODS[:2] + METHODS[3:]
     return (("pulling", "embree"), ("finger", "embree"))
 
@@ -206,22 +218,33 @@ def run_factor(task: dict) -> list[dict]:
     return rows
 
 
+def score_key(factor: str, method: str) -> str:
+    """The score a row of ``factor`` is judged by: F@1% for whole 3D runs,
+    coverage within the sensor's tolerance eps/2 + 2 sigma
+    (``coverage_sensor``) for the sensor factors -- a contact reported 2 sigma
+    off is what the sensor allows, not a miss of the method --, the reachable
+    coverage within eps/2 otherwise."""
+    if method.endswith("3D"):
+        return "fscore_1"
+    return "coverage_sensor" if factor in SENSOR_FACTORS else "coverage"
+
+
 def breaking_points(rows, drop: float = 0.05) -> list[dict]:
     """Per (factor, method): the first value where the method breaks (or None).
 
     Values are taken in task order (coarse -> hard). A run breaks when it
-    crashes, hits its budget, or its coverage (F@1% for 3D rows) falls more
-    than ``drop`` below the first value's.
+    crashes, hits its budget, or its score falls more than ``drop`` below
+    the first value's: :func:`score_key` names the score.
     """
     out = []
     keys = list(dict.fromkeys((r["factor"], r["method"]) for r in rows))
     for factor, method in keys:
         sel = [r for r in rows if r["factor"] == factor and r["method"] == method]
         values = list(dict.fromkeys(r["value"] for r in sel))
-        metric = "fscore_1" if method.endswith("3D") else "coverage"
+        metric = score_key(factor, method)
 
         def score(v):
-            xs = [r[metric] for r in sel if r["value"] == v]
+            xs = [r.get(metric, np.nan) for r in sel if r["value"] == v]
             return float(np.nanmean(xs)) if np.isfinite(xs).any() else np.nan
 
         ref = score(values[0])

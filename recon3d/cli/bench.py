@@ -4,10 +4,12 @@ Sweep eps x slices (uniform and --slices auto), compare the contact
 backends, dense finger probing against pulling, the stability of each
 method, and pulling against a pushing contour follower under tip friction; write CSV + PNG into DIR and print a short table (README 'recon3d
 bench'). Runs on Dask: a local cluster by default, an existing one with
---scheduler.
+--scheduler. ``--redraw DIR[,DIR...]`` re-makes the files of earlier
+outputs from their CSVs (no sensing; parts run apart are merged).
 """
 from __future__ import annotations
 
+from recon3d.benchmark.redraw import redraw
 from recon3d.benchmark.run3d import PARTS, run_bench
 from recon3d.checks import InputError, at_least, check_out_dir
 from recon3d.cli.batch import add_cluster_flags
@@ -25,6 +27,10 @@ def add_arguments(p) -> None:
                    help="small sweeps (about 3 minutes on 2 cores)")
     p.add_argument("--parts", default=None,
                    help=f"comma-separated subset of {','.join(PARTS)}")
+    p.add_argument("--redraw", default=None, metavar="DIR[,DIR...]",
+                   help="no sensing: re-make the CSVs, charts and table.txt of earlier bench "
+                   "outputs from their CSVs into --out (several DIRs, e.g. parts run apart, "
+                   "are merged; --quick and --parts are taken from them)")
 
 
 def command(args) -> int:
@@ -35,6 +41,15 @@ def command(args) -> int:
     if args.workers is not None:
         at_least(args.workers, "--workers")
     check_out_dir(args.out, "--out")
+    if args.redraw is not None:
+        try:
+            lines = redraw([d.strip() for d in args.redraw.split(",") if d.strip()], args.out)
+        except (ValueError, OSError) as exc:
+            raise InputError(f"--redraw: {exc}") from None
+        except KeyError as exc:
+            raise InputError(f"--redraw: a CSV lacks the column {exc}") from None
+        print("\n".join(lines))
+        return 0
     try:
         lines = run_bench(args.out, args.quick, args.scheduler, args.workers, parts, args.quiet)
     except OSError as exc:

@@ -14,6 +14,14 @@ nearest loose start S whose pair (E, S) the robot has not registered yet,
 and registers (E, S) as an unknown area (rule ``"audit"``) with the
 postures that touched E and S: it goes through the paper's flow like any
 other. The robot uses only its own records.
+
+What the audit leaves -- a loose end whose stretch went through the flow
+and came back untraced (its area ended ``open``: the pass left through a
+gap to F without reaching the contour behind; §3.2's single object does not
+hold), or one left when the rounds ran out -- is never dropped:
+:func:`report_leftovers` reports each as an unknown chord from the loose
+end to the nearest loose start (rule ``"loose"``), as the chords of areas
+left unknown are reported.
 """
 from __future__ import annotations
 
@@ -26,7 +34,7 @@ from core2d.planner.areas import Area
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
-__all__ = ["audit", "MAX_AUDITS"]
+__all__ = ["audit", "report_leftovers", "MAX_AUDITS"]
 
 #: rounds of the audit in one run
 MAX_AUDITS = 4
@@ -58,4 +66,40 @@ def audit(run: Exploration) -> int:
                          rule="audit"))
             added += 1
             break
+    return added
+
+
+def _reported(run: Exploration, p) -> bool:
+    """Does an unknown chord already end (within eps/2) at ``p``?"""
+    same = run.res.tip_zone
+    return any(min(np.hypot(*(u[0] - p)), np.hypot(*(u[1] - p))) <= same
+               for u in run.result.unknown)
+
+
+def _nearest(found, p):
+    """The (point, Posture) of ``found`` nearest to ``p``, or ``p`` itself with no posture."""
+    if not found:
+        return np.asarray(p, float), None
+    q, pose, _ = min(found, key=lambda f: np.hypot(*(f[0] - p)))
+    return np.asarray(q, float), pose
+
+
+def report_leftovers(run: Exploration) -> int:
+    """Report every loose end and loose start of the map that no unknown
+    chord holds yet as an unknown area (E, S): E a loose end, S the
+    nearest loose start (for a lone start, the nearest loose end leads to
+    it). Returns how many were reported."""
+    ends, starts = run.known.loose_ends()
+    added = 0
+    for (p, pose, _), is_end in [(e, True) for e in ends] + [(s, False) for s in starts]:
+        if _reported(run, p):
+            continue
+        q, pose_q = _nearest(starts if is_end else ends, p)
+        a, b, pose_a, pose_b = (p, q, pose, pose_q) if is_end else (q, p, pose_q, pose)
+        area = Area(np.asarray(a, float), np.asarray(b, float), pose_a, pose_b, rule="loose")
+        run.add(area)
+        run.queue.remove(area)
+        run.close(area, "unknown", "the recorded contour stops here and no area traced on "
+                                   "(a loose end the audit left)")
+        added += 1
     return added

@@ -40,7 +40,7 @@ import numpy as np
 from core2d.planar import magnitude
 from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
-from core2d.planner.audit import audit
+from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING, Flow
 from core2d.planner.known import KnownContour
@@ -344,6 +344,8 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out
         run.close(area, "unknown", run.result.areas[area.index].note)
+    if flow.map:  # contour left unrecorded is reported, never dropped
+        report_leftovers(run)
     run.result.stats = final_stats(probe, escapes=run.counters.escapes,
                                    areas=len(run.result.areas), budget_hit=budget.hit,
                                    seconds=time.perf_counter() - t0)

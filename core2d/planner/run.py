@@ -22,7 +22,9 @@ a pass that finds no new contact -- never makes W3: the area is deferred,
 and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).
 Finally :func:`core2d.planner.audit.audit` registers the contour that no area
-holds any more (loose ends of the recorded contour: islands, §3.2).
+holds any more (loose ends of the recorded contour: islands, §3.2, and the
+contour behind the ends of a lid that opens to F between two objects), and
+what it leaves is reported unknown (:func:`~core2d.planner.audit.report_leftovers`).
 Areas are processed breadth first until none is left or a budget is hit.
 
 The map, the deferral, the proof for W3, the revisit and the audit are the

@@ -77,9 +77,7 @@ def _reported(run: Exploration, p) -> bool:
 
 
 def _nearest(found, p):
-    """The (point, Posture) of ``found`` nearest to ``p``, or ``p`` itself with no posture."""
-    if not found:
-        return np.asarray(p, float), None
+    """The (point, Posture) of ``found`` nearest to ``p``."""
     q, pose, _ = min(found, key=lambda f: np.hypot(*(f[0] - p)))
     return np.asarray(q, float), pose
 
@@ -87,9 +85,17 @@ def _nearest(found, p):
 def report_leftovers(run: Exploration) -> int:
     """Report every loose end and loose start of the map that no unknown
     chord holds yet as an unknown area (E, S): E a loose end, S the
-    nearest loose start (for a lone start, the nearest loose end leads to
-    it). Returns how many were reported."""
-    ends, starts = run.known.loose_ends()
+    nearest loose start (for a start no such chord reaches, the nearest
+    loose end leads to it). An end that any recorded piece continues,
+    whichever way it turns (the tip of a slit, where the contour turns
+    back), is not loose here; nor, with no loose start anywhere, is a lone
+    end (nor a lone start): the recorded contour stops there without
+    beginning again anywhere, as at the tip of a spike narrower than eps
+    whose other side was recorded within eps of the side traced.
+    Returns how many were reported."""
+    ends, starts = run.known.loose_ends(turn=False)
+    if not ends or not starts:
+        return 0
     added = 0
     for (p, pose, _), is_end in [(e, True) for e in ends] + [(s, False) for s in starts]:
         if _reported(run, p):

@@ -151,12 +151,12 @@ class KnownContour:
             out.add(pl)
         return out
 
-    def loose_ends(self):
+    def loose_ends(self, turn: bool = True):
         """Where the recorded contour stops (:func:`core2d.planner.loose_ends.loose_ends`).
 
         Returns ``(ends, starts)``: lists of (point (2,) float, Posture or
         None, piece index)."""
-        return loose_ends(self)
+        return loose_ends(self, turn)
 
     def successors(self, i) -> list:
         """[(j, k)]: piece j passes the last point of piece ``i`` (within

@@ -46,19 +46,20 @@ def _meets(known, j, k, q):
     return a + t * ab
 
 
-def _end_chain(known, i):
+def _end_chain(known, i, turn=True):
     """Follow the recorded contour on from the last point e of piece ``i``,
     through pieces passing the end of the one before within ``join`` and
     turning there by less than 120 degrees, within 2 ``join`` of e.
 
     Returns None when it moves on beyond ``join`` from e, else the piece of
     the chain that ends farthest on from e (``i`` itself when nothing
-    continues it): where the recorded contour stops."""
+    continues it): where the recorded contour stops. ``turn=False`` lets
+    any piece passing e continue it, whichever way it turns."""
     pl, r = known.pieces[i], known.join
     e = pl[-1]
     todo = [(j, k, e) for j, k in known.successors(i)]
-    if not (np.hypot(*(pl - e).T) > r).any():  # shorter than join: its direction is no reading
-        todo += [(j, k, e) for j, k in known.passing(e, r)]
+    if not turn or not (np.hypot(*(pl - e).T) > r).any():  # (shorter than join: its
+        todo += [(j, k, e) for j, k in known.passing(e, r)]  # direction is no reading)
     seen, last, far = {i}, i, 0.0
     while todo:
         j, k, q = todo.pop()
@@ -108,8 +109,13 @@ def _one_each(found, r):
     return kept
 
 
-def loose_ends(known):
+def loose_ends(known, turn=True):
     """Loose ends and loose starts of ``known`` (see the module doc).
+
+    ``turn=False``: an end is continued by any piece passing it, whichever
+    way that piece turns -- at the tip of a slit the contour turns back
+    by more than 120 degrees, and the wall beyond continues it (a stricter
+    test of what is loose, for reporting).
 
     Returns
     -------
@@ -119,7 +125,7 @@ def loose_ends(known):
     """
     ends, starts = [], []
     for i in range(len(known.pieces)):
-        j = _end_chain(known, i)
+        j = _end_chain(known, i, turn)
         if j is not None:
             ends.append((known.pieces[j][-1], known.poses[j][1], j))
         j = _start_chain(known, i)

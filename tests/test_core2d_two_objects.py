@@ -22,6 +22,7 @@ import numpy as np
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING
 from core2d.planner.known import KnownContour
+from core2d.planner.loose_ends import recorded_stops
 from core2d.planner.run import explore
 from core2d.sim.probe import Probe
 from core2d.truth.metrics import slice_metrics
@@ -80,12 +81,12 @@ def test_a_trace_end_with_a_short_chord_on_it_is_still_a_loose_end():
     k.add([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
     k.add([[2.0, 0.0], [2.1, -0.05]])  # a short chord at the trace's end
     k.add([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])  # the same stretch again
-    ends, starts = k.loose_ends()
+    ends, starts = recorded_stops(k)
     assert len(ends) == 1 and np.hypot(*(ends[0][0] - [2.0, 0.0])) <= 0.4
     assert len(starts) == 1 and np.allclose(starts[0][0], [0.0, 0.0])
     for x in np.arange(2.1, 3.0, 0.1):  # short chords running on, 0.1 each
         k.add([[x, 0.0], [x + 0.1, 0.0]])
-    ends, _ = k.loose_ends()  # where the recorded contour stops
+    ends, _ = recorded_stops(k)  # where the recorded contour stops
     assert len(ends) == 1 and np.allclose(ends[0][0], [3.0, 0.0])
 
 
@@ -96,7 +97,7 @@ def test_a_piece_shorter_than_join_is_continued_whichever_way_it_points():
     k.add([[0.0, 0.0], [1.0, 0.0]])
     k.add([[1.0, 0.0], [1.0 - 1e-4, 0.0]])
     k.add([[1.0, 0.0], [2.0, 0.0]])
-    ends, _ = k.loose_ends()
+    ends, _ = recorded_stops(k)
     assert len(ends) == 1 and np.allclose(ends[0][0], [2.0, 0.0])
 
 

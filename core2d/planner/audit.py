@@ -15,13 +15,27 @@ and registers (E, S) as an unknown area (rule ``"audit"``) with the
 postures that touched E and S: it goes through the paper's flow like any
 other. The robot uses only its own records.
 
-What the audit leaves -- a loose end whose stretch went through the flow
-and came back untraced (its area ended ``open``: the pass left through a
-gap to F without reaching the contour behind; §3.2's single object does not
-hold), or one left when the rounds ran out -- is never dropped:
-:func:`report_leftovers` reports each as an unknown chord from the loose
-end to the nearest loose start (rule ``"loose"``), as the chords of areas
-left unknown are reported.
+**Behind a lid that opened to F.** An area whose lid is a gap between two
+separate objects ends ``open`` (:mod:`core2d.planner.revisit`, step 5):
+a pass left through the gap without contact. Its A_i and B_i lie on two
+objects, and the contour that goes on from A_i round A_i's own object
+(C_{A_i} onward), and the contour that leads round B_i's object into B_i,
+face away from the gap: no pass through that lid reaches them (§3.2's
+single object does not hold). The robot's map says whether they are
+recorded: at A_i the recorded contour may stop, and at B_i begin. The
+coarse test of :meth:`~core2d.planner.known.KnownContour.loose_ends` (any
+piece passing within ``join`` continues an end) misses that where a W2
+chord a hair long lies at A_i, or the same stretch was recorded twice, so
+the audit asks the finer one there
+(:func:`core2d.planner.loose_ends.recorded_stops`: recorded contour must
+move on beyond ``join``) and adds what it finds to the loose ends and
+starts it pairs. The stretch behind each end then goes through the paper's
+flow like any A_iB_i.
+
+What stays untraced behind such a lid is never dropped:
+:func:`report_leftovers` reports it as an unknown chord from the loose end
+to the nearest loose start (rule ``"loose"``), as the chords of areas left
+unknown are reported.
 """
 from __future__ import annotations
 
@@ -30,11 +44,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from core2d.planner.areas import Area
+from core2d.planner.loose_ends import recorded_stops
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
-__all__ = ["audit", "report_leftovers", "MAX_AUDITS"]
+__all__ = ["audit", "behind_open_lids", "report_leftovers", "MAX_AUDITS"]
 
 #: rounds of the audit in one run
 MAX_AUDITS = 4
@@ -46,8 +61,43 @@ def _registered(run: Exploration, e, s) -> bool:
                for rec in run.result.areas)
 
 
+def _near(p, points, r) -> bool:
+    return any(np.hypot(*(np.asarray(q) - p)) <= r for q in points)
+
+
+def behind_open_lids(run: Exploration, turn: bool = True):
+    """The stretches behind the ends of lids that opened to F.
+
+    Loose ends at the A_i, and loose starts at the B_i, of the areas that
+    ended ``open`` (within ``join``), by the finer test
+    :func:`~core2d.planner.loose_ends.recorded_stops`, each with its
+    partner: the nearest loose start (loose end) of that test anywhere.
+
+    Returns
+    -------
+    list of ((2,) E, Posture, (2,) S, Posture) -- a stretch from loose end E
+    to loose start S.
+    """
+    opened = [rec for rec in run.result.areas if rec.outcome == "open"]
+    if not opened:
+        return []
+    ends, starts = recorded_stops(run.known, turn)
+    r = run.known.join
+    out = []
+    if starts:
+        for e, pose, _ in ends:
+            if _near(e, [rec.a for rec in opened], r):
+                out.append((e, pose, *_nearest(starts, e)))
+    if ends:
+        for s, pose, _ in starts:
+            if _near(s, [rec.b for rec in opened], r):
+                out.append((*_nearest(ends, s), s, pose))
+    return out
+
+
 def audit(run: Exploration) -> int:
-    """Register an area for every loose end of the map; returns how many."""
+    """Register an area for every loose end of the map and every stretch
+    behind the ends of a lid that opened to F; returns how many."""
     if run.audits >= MAX_AUDITS:
         return 0
     run.audits += 1
@@ -66,6 +116,11 @@ def audit(run: Exploration) -> int:
                          rule="audit"))
             added += 1
             break
+    for e, pose_e, s, pose_s in behind_open_lids(run):
+        if pose_e is not None and pose_s is not None and not _registered(run, e, s):
+            run.add(Area(np.asarray(e, float), np.asarray(s, float), pose_e, pose_s,
+                         rule="audit"))
+            added += 1
     return added
 
 
@@ -83,29 +138,19 @@ def _nearest(found, p):
 
 
 def report_leftovers(run: Exploration) -> int:
-    """Report every loose end and loose start of the map that no unknown
-    chord holds yet as an unknown area (E, S): E a loose end, S the
-    nearest loose start (for a start no such chord reaches, the nearest
-    loose end leads to it). An end that any recorded piece continues,
-    whichever way it turns (the tip of a slit, where the contour turns
-    back), is not loose here; nor, with no loose start anywhere, is a lone
-    end (nor a lone start): the recorded contour stops there without
-    beginning again anywhere, as at the tip of a spike narrower than eps
-    whose other side was recorded within eps of the side traced.
-    Returns how many were reported."""
-    ends, starts = run.known.loose_ends(turn=False)
-    if not ends or not starts:
-        return 0
+    """Report the contour left untraced behind the ends of lids that opened
+    to F (:func:`behind_open_lids`) that no unknown chord holds yet: an
+    unknown area (E, S) each (rule ``"loose"``). Here an end that any
+    recorded piece continues, whichever way it turns (the tip of a slit,
+    where the contour turns back), is not loose. Returns how many."""
     added = 0
-    for (p, pose, _), is_end in [(e, True) for e in ends] + [(s, False) for s in starts]:
-        if _reported(run, p):
+    for e, pose_e, s, pose_s in behind_open_lids(run, turn=False):
+        if _reported(run, e) and _reported(run, s):
             continue
-        q, pose_q = _nearest(starts if is_end else ends, p)
-        a, b, pose_a, pose_b = (p, q, pose, pose_q) if is_end else (q, p, pose_q, pose)
-        area = Area(np.asarray(a, float), np.asarray(b, float), pose_a, pose_b, rule="loose")
+        area = Area(np.asarray(e, float), np.asarray(s, float), pose_e, pose_s, rule="loose")
         run.add(area)
         run.queue.remove(area)
-        run.close(area, "unknown", "the recorded contour stops here and no area traced on "
-                                   "(a loose end the audit left)")
+        run.close(area, "unknown", "the recorded contour stops at the end of a lid that "
+                                   "opened to F, and no area traced on from it")
         added += 1
     return added

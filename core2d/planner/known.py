@@ -29,7 +29,6 @@ import numba
 import numpy as np
 
 from core2d.planner.lid_lines import FreeLine, FreeLines
-from core2d.planner.loose_ends import loose_ends
 
 __all__ = ["KnownContour", "FreeLine"]
 
@@ -151,12 +150,24 @@ class KnownContour:
             out.add(pl)
         return out
 
-    def loose_ends(self, turn: bool = True):
-        """Where the recorded contour stops (:func:`core2d.planner.loose_ends.loose_ends`).
+    def loose_ends(self):
+        """Where the recorded contour stops. Every piece runs with the
+        material on its right, so unknown contour begins where a piece ends
+        and no other piece passes within ``join`` (a loose end), and arrives
+        where a piece starts and none passes (a loose start). A finer test
+        of where it stops: :func:`core2d.planner.loose_ends.recorded_stops`.
 
         Returns ``(ends, starts)``: lists of (point (2,) float, Posture or
         None, piece index)."""
-        return loose_ends(self, turn)
+        ends, starts = [], []
+        for i, pl in enumerate(self.pieces):
+            if not self._next[i]:
+                ends.append((pl[-1], self.poses[i][1], i))
+            g = self._near(pl[0], self.join)
+            g = g[self._piece[g] != i]
+            if not (_point_segments(pl[0], self._a[g], self._b[g]) <= self.join).any():
+                starts.append((pl[0], self.poses[i][0], i))
+        return ends, starts
 
     def successors(self, i) -> list:
         """[(j, k)]: piece j passes the last point of piece ``i`` (within

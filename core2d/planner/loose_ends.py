@@ -3,8 +3,10 @@
 Every piece of the map (:class:`~core2d.planner.known.KnownContour`) runs
 with the material on its right, so on a closed contour the stretches not
 yet recorded run from a *loose end* (the recorded contour stops) to a
-*loose start* (it begins again). :mod:`core2d.planner.audit` registers
-them as unknown areas A_iB_i; what the audit leaves is reported unknown.
+*loose start* (it begins again). This is the finer test
+:mod:`core2d.planner.audit` applies at the ends of a lid that opened to F
+(:meth:`KnownContour.loose_ends <core2d.planner.known.KnownContour.loose_ends>`
+is the coarse one it applies everywhere).
 
 An end is continued only by recorded contour that goes on *beyond* it: a
 chain of pieces, each passing the end of the one before within ``join``
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["loose_ends"]
+__all__ = ["recorded_stops"]
 
 
 def _onward(points, p, e, r) -> bool:
@@ -109,7 +111,7 @@ def _one_each(found, r):
     return kept
 
 
-def loose_ends(known, turn=True):
+def recorded_stops(known, turn=True):
     """Loose ends and loose starts of ``known`` (see the module doc).
 
     ``turn=False``: an end is continued by any piece passing it, whichever

@@ -62,10 +62,11 @@ def _registered(run: Exploration, e, s) -> bool:
 
 
 def _near(p, points, r) -> bool:
+    """Does any of ``points`` lie within ``r`` of ``p``?"""
     return any(np.hypot(*(np.asarray(q) - p)) <= r for q in points)
 
 
-def behind_open_lids(run: Exploration, turn: bool = True):
+def behind_open_lids(run: Exploration):
     """The stretches behind the ends of lids that opened to F.
 
     Loose ends at the A_i, and loose starts at the B_i, of the areas that
@@ -81,7 +82,7 @@ def behind_open_lids(run: Exploration, turn: bool = True):
     opened = [rec for rec in run.result.areas if rec.outcome == "open"]
     if not opened:
         return []
-    ends, starts = recorded_stops(run.known, turn)
+    ends, starts = recorded_stops(run.known)
     r = run.known.join
     out = []
     if starts:
@@ -140,11 +141,9 @@ def _nearest(found, p):
 def report_leftovers(run: Exploration) -> int:
     """Report the contour left untraced behind the ends of lids that opened
     to F (:func:`behind_open_lids`) that no unknown chord holds yet: an
-    unknown area (E, S) each (rule ``"loose"``). Here an end that any
-    recorded piece continues, whichever way it turns (the tip of a slit,
-    where the contour turns back), is not loose. Returns how many."""
+    unknown area (E, S) each (rule ``"loose"``). Returns how many."""
     added = 0
-    for e, pose_e, s, pose_s in behind_open_lids(run, turn=False):
+    for e, pose_e, s, pose_s in behind_open_lids(run):
         if _reported(run, e) and _reported(run, s):
             continue
         area = Area(np.asarray(e, float), np.asarray(s, float), pose_e, pose_s, rule="loose")

@@ -46,7 +46,12 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
 
     Returns
     -------
-    list of Area (rule ``"bootstrap"``), in clockwise order.
+    list of Area (rule ``"bootstrap"``), in clockwise order. With two
+    contacts (two small objects far apart, say) the two areas are the two
+    sides of the contour, C_A^B and C_B^A: the pairs (A, B) and (B, A)
+    share one midpoint of their postures' joints, so the orientation test
+    of Def. 3 (:func:`_oriented`) would label both alike and register one
+    area twice; the second is the first reversed.
     """
     far = probe.radius / 2 if far is None else far
     angles = list(np.pi / 2 - 2 * np.pi * np.arange(count) / count)

@@ -48,20 +48,19 @@ def _meets(known, j, k, q):
     return a + t * ab
 
 
-def _end_chain(known, i, turn=True):
+def _end_chain(known, i):
     """Follow the recorded contour on from the last point e of piece ``i``,
     through pieces passing the end of the one before within ``join`` and
     turning there by less than 120 degrees, within 2 ``join`` of e.
 
     Returns None when it moves on beyond ``join`` from e, else the piece of
     the chain that ends farthest on from e (``i`` itself when nothing
-    continues it): where the recorded contour stops. ``turn=False`` lets
-    any piece passing e continue it, whichever way it turns."""
+    continues it): where the recorded contour stops."""
     pl, r = known.pieces[i], known.join
     e = pl[-1]
     todo = [(j, k, e) for j, k in known.successors(i)]
-    if not turn or not (np.hypot(*(pl - e).T) > r).any():  # (shorter than join: its
-        todo += [(j, k, e) for j, k in known.passing(e, r)]  # direction is no reading)
+    if not (np.hypot(*(pl - e).T) > r).any():  # shorter than join: its direction is no reading
+        todo += [(j, k, e) for j, k in known.passing(e, r)]
     seen, last, far = {i}, i, 0.0
     while todo:
         j, k, q = todo.pop()
@@ -111,13 +110,8 @@ def _one_each(found, r):
     return kept
 
 
-def recorded_stops(known, turn=True):
+def recorded_stops(known):
     """Loose ends and loose starts of ``known`` (see the module doc).
-
-    ``turn=False``: an end is continued by any piece passing it, whichever
-    way that piece turns -- at the tip of a slit the contour turns back
-    by more than 120 degrees, and the wall beyond continues it (a stricter
-    test of what is loose, for reporting).
 
     Returns
     -------
@@ -127,7 +121,7 @@ def recorded_stops(known, turn=True):
     """
     ends, starts = [], []
     for i in range(len(known.pieces)):
-        j = _end_chain(known, i, turn)
+        j = _end_chain(known, i)
         if j is not None:
             ends.append((known.pieces[j][-1], known.poses[j][1], j))
         j = _start_chain(known, i)

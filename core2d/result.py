@@ -38,13 +38,18 @@ class AreaRecord:
         hopped over a gap -- a step longer than eps / 4 that turns concave,
         or Case 1 passing P_fin across a gap: the contour between was not
         traced), ``"escape"``, ``"revisit"`` (a pass
-        through a deferred lid found a new contact), ``"limit"``.
+        through a deferred lid found a new contact), ``"limit"``,
+        ``"audit"`` (a stretch between a loose end and a loose start of the
+        recorded contour that no area held), ``"loose"`` (such a stretch the
+        audit left untraced: reported ``"unknown"`` at the end).
     outcome : str
         How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,
         ``"W3"``, ``"split"`` (children registered), ``"deferred"`` (a dead
         end, to be looked at again), ``"open"`` (an opening to F between
-        separate objects: nothing behind the lid), ``"unknown"`` (still
-        unknown: passes found nothing new, or a budget ran out).
+        separate objects: nothing behind the lid itself; contour left
+        untraced behind its ends is reported by ``"loose"`` areas),
+        ``"unknown"`` (still unknown: passes found nothing new, a budget
+        ran out, or a ``"loose"`` stretch).
     """
 
     index: int
@@ -104,7 +109,8 @@ class SliceResult:
     w2 : list of (2, 2) float -- approximated segments (length < eps).
     w3 : list of (2, 2) float -- lids of never-touching areas.
     unknown : list of (2, 2) float -- areas still unknown at the end (a
-        budget hit, or passes through the lid found nothing new).
+        budget hit, passes through the lid found nothing new, or recorded
+        contour that stops at a loose end no area traced on from).
     areas : list of AreaRecord -- the A_iB_i log.
     stats : SenseStats
     known_at : dict -- ``"w1"``, ``"w2"``, ``"w3"`` -> list of int parallel to

@@ -91,6 +91,21 @@ def test_unknown_chords_are_counted_located_and_explained(budget_run):
     assert lines[1].strip().startswith(f"z#{chords[0]['slice']} at (")
 
 
+def test_a_loose_end_chord_is_named_for_its_cause():
+    """An unknown chord the planner reports for contour that stops at a loose
+    end (rule "loose") is counted as such, not as a dead end."""
+    from recon3d.score.unknowns import CAUSES, _cause
+    assert _cause(False, "loose") == "loose end" and _cause(True, "loose") == "budget"
+    assert _cause(False, "revisit") == "dead end"
+    chords = [{"axis": "x", "slice": 7, "middle": [0.0, 1.0, 2.0], "length": 3.0,
+               "cause": "loose end", "on_contour": 0.5, "note": "n"},
+              {"axis": "x", "slice": 7, "middle": [0.0, 1.0, 2.0], "length": 3.0,
+               "cause": "dead end", "on_contour": 0.5, "note": "n"}]
+    head = chord_lines({"unknown_chords": chords})[0]
+    assert "0 from a budget hit, 1 dead end (" in head
+    assert f"1 loose end ({CAUSES['loose end']})" in head
+
+
 def test_shares_of_a_run_are_consistent():
     """bowl, 4 z-slices: the slab share is the share of the ground truth between the first
     and the last slice plane (counted here on independent samples)."""

@@ -46,7 +46,12 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
 
     Returns
     -------
-    list of Area (rule ``"bootstrap"``), in clockwise order.
+    list of Area (rule ``"bootstrap"``), in clockwise order. With two
+    contacts (two small objects far apart, say) the two areas are the two
+    sides of the contour, C_A^B and C_B^A: the pairs (A, B) and (B, A)
+    share one midpoint of their postures' joints, so the orientation test
+    of Def. 3 (:func:`_oriented`) would label both alike and register one
+    area twice; the second is the first reversed.
     """
     far = probe.radius / 2 if far is None else far
     angles = list(np.pi / 2 - 2 * np.pi * np.arange(count) / count)
@@ -66,12 +71,13 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
             found[a] = _probe_from(probe, a)
         angles = sorted(angles + extra, reverse=True)
     hits = [found[a] for a in angles if found[a] is not None]
-    areas = []
-    for k, (pa, posa) in enumerate(hits):
-        pb, posb = hits[(k + 1) % len(hits)]
-        if len(hits) > 1:
-            areas.append(_oriented(pa, pb, posa, posb))
-    return areas
+    if len(hits) < 2:
+        return []
+    if len(hits) == 2:  # the two sides of the contour: C_A^B and C_B^A
+        first = _oriented(hits[0][0], hits[1][0], hits[0][1], hits[1][1])
+        return [first, Area(first.b, first.a, first.pose_b, first.pose_a)]
+    return [_oriented(pa, pb, posa, posb)
+            for (pa, posa), (pb, posb) in zip(hits, hits[1:] + hits[:1])]
 
 
 def _oriented(pa, pb, posa, posb):

@@ -154,7 +154,8 @@ class KnownContour:
         """Where the recorded contour stops. Every piece runs with the
         material on its right, so unknown contour begins where a piece ends
         and no other piece passes within ``join`` (a loose end), and arrives
-        where a piece starts and none passes (a loose start).
+        where a piece starts and none passes (a loose start). A finer test
+        of where it stops: :func:`core2d.planner.loose_ends.recorded_stops`.
 
         Returns ``(ends, starts)``: lists of (point (2,) float, Posture or
         None, piece index)."""
@@ -167,6 +168,20 @@ class KnownContour:
             if not (_point_segments(pl[0], self._a[g], self._b[g]) <= self.join).any():
                 starts.append((pl[0], self.poses[i][0], i))
         return ends, starts
+
+    def successors(self, i) -> list:
+        """[(j, k)]: piece j passes the last point of piece ``i`` (within
+        ``join``, turning less than 120 degrees) at its segment k."""
+        return self._next[i]
+
+    def passing(self, point, r) -> list:
+        """[(j, k)]: piece j passes within ``r`` of ``point`` (2,), first at its segment k."""
+        p = np.asarray(point, float)
+        g = self._near(p, r)
+        g = g[_point_segments(p, self._a[g], self._b[g]) <= r]
+        pieces = self._piece[g]
+        return [(int(j), int(g[np.argmax(pieces == j)]) - self._first[j])
+                for j in np.unique(pieces)]
 
     def segments(self) -> tuple[np.ndarray, np.ndarray]:
         """(n, 2), (n, 2) float: start and end of every recorded segment."""

@@ -40,7 +40,16 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
    * one left through the lid without any contact -> ``open``: the lid is
      an opening to F (a gap between separate objects, §3.2), nothing is
-     written;
+     written for the lid itself. That does not end the exploration of the
+     contour behind its ends: A_i and B_i lie on two objects, and the
+     contour that goes on round each object from A_i (C_{A_i} onward) and
+     leads round to B_i faces away from the gap, where no pass through the
+     lid reaches. The robot's map shows where: its recorded contour stops
+     at A_i (a loose end) and begins again farther round (a loose start), and
+     :func:`core2d.planner.audit.audit` registers the stretch between as an
+     area of its own, which goes through the paper's flow like any
+     A_iB_i. A stretch that stays untraced is reported unknown
+     (:func:`core2d.planner.audit.report_leftovers`), never dropped;
    * the lid could be W3 and every pass, one per eps/2 along it, ended at one
      of its touched ends (within eps/2 of A_i or B_i) -> **W3 (step 4), probed at the
      paper's resolution**: the free lines left are those that graze the

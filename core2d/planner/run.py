@@ -22,7 +22,9 @@ a pass that finds no new contact -- never makes W3: the area is deferred,
 and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).
 Finally :func:`core2d.planner.audit.audit` registers the contour that no area
-holds any more (loose ends of the recorded contour: islands, §3.2).
+holds any more (loose ends of the recorded contour: islands, §3.2, and the
+contour behind the ends of a lid that opens to F between two objects), and
+what it leaves is reported unknown (:func:`~core2d.planner.audit.report_leftovers`).
 Areas are processed breadth first until none is left or a budget is hit.
 
 The map, the deferral, the proof for W3, the revisit and the audit are the
@@ -40,7 +42,7 @@ import numpy as np
 from core2d.planar import magnitude
 from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
-from core2d.planner.audit import audit
+from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING, Flow
 from core2d.planner.known import KnownContour
@@ -344,6 +346,8 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out
         run.close(area, "unknown", run.result.areas[area.index].note)
+    if flow.map:  # contour left unrecorded is reported, never dropped
+        report_leftovers(run)
     run.result.stats = final_stats(probe, escapes=run.counters.escapes,
                                    areas=len(run.result.areas), budget_hit=budget.hit,
                                    seconds=time.perf_counter() - t0)

@@ -62,10 +62,13 @@ def chord_lines(metrics: dict, shown: int = 4) -> list[str]:
     if not chords:
         return []
     total = sum(c["length"] for c in chords)
-    budget = sum(c["cause"] == "budget" for c in chords)
+    budget, loose = (sum(c["cause"] == k for c in chords) for k in ("budget", "loose end"))
+    dead = len(chords) - budget - loose
     lines = [f"{len(chords)} unknown chord{'s' if len(chords) > 1 else ''} (total length "
-             f"{number(total, '.3g')}): {budget} from a budget hit, {len(chords) - budget} "
-             f"dead end{'' if len(chords) - budget == 1 else 's'} ({CAUSES['dead end']})"]
+             f"{number(total, '.3g')}): {budget} from a budget hit, {dead} "
+             f"dead end{'' if dead == 1 else 's'} ({CAUSES['dead end']})"
+             + (f", {loose} loose end{'' if loose == 1 else 's'} ({CAUSES['loose end']})"
+                if loose else "")]
     for c in chords[:shown]:
         mid = ", ".join(number(v, ".4g") for v in c["middle"])
         lines.append(f"  {c['axis']}#{c['slice']} at ({mid}), length {number(c['length'], '.3g')}, "

@@ -1,6 +1,7 @@
 """Unknown chords: the areas A_iB_i a slice ends with still unknown, located and explained.
 
-An area ends ``unknown`` (core2d's planner, ``core2d/planner/revisit.py``) in two ways:
+An area ends ``unknown`` (core2d's planner, ``core2d/planner/revisit.py`` and
+``core2d/planner/audit.py``) in three ways:
 
 * **budget** -- the slice's motion or area budget ran out while the area was
   queued or deferred (``stats.budget_hit``);
@@ -9,7 +10,11 @@ An area ends ``unknown`` (core2d's planner, ``core2d/planner/revisit.py``) in tw
   recorded, or no line reached the lid, and the lid could not be proven W3
   (it crosses recorded contour, or the probe cannot hold it, or it closes no
   loop). A chord laid along a flat floor at the bottom of a deep cavity is
-  one: every pass lands on the floor, i.e. on the lid itself.
+  one: every pass lands on the floor, i.e. on the lid itself;
+* **loose end** -- no budget hit: the robot's recorded contour stops at a
+  loose end and no area traced on from it (the planner's audit left it),
+  e.g. the far side of an object behind a lid that opens to F between two
+  objects. The chord runs from the loose end to the nearest loose start.
 
 Each chord is reported with its slice, its ends in world coordinates, its
 length, the planner's note and the share of its length that lies on the
@@ -28,7 +33,9 @@ __all__ = ["unknown_chords", "CAUSES"]
 
 CAUSES = {"budget": "the slice hit its motion or area budget",
           "dead end": "no budget hit; no pass through the lid found anything new and "
-                      "the lid is no provable W3 lid"}
+                      "the lid is no provable W3 lid",
+          "loose end": "no budget hit; the recorded contour stops there and nothing "
+                       "traced on from it"}
 """Why a chord is unknown -> what that means (the module doc)."""
 
 
@@ -40,6 +47,11 @@ def _on_contour(srun: SliceRun, a, b, tol: float, samples: int = 33) -> float | 
     d = np.min([shapely.distance(pts, shapely.LinearRing(np.asarray(lp, dtype=np.float64)))
                 for lp in srun.slice.loops], axis=0)
     return float((d <= tol).mean())
+
+
+def _cause(budget_hit: bool, rule: str) -> str:
+    """The key of :data:`CAUSES` of an unknown area (a budget hit first)."""
+    return "budget" if budget_hit else ("loose end" if rule == "loose" else "dead end")
 
 
 def unknown_chords(run: MeshRun) -> list[dict]:
@@ -67,7 +79,7 @@ def unknown_chords(run: MeshRun) -> list[dict]:
                             "a": np.round(a, 9).tolist(), "b": np.round(b, 9).tolist(),
                             "middle": np.round(0.5 * (a + b), 9).tolist(),
                             "length": float(np.linalg.norm(b2 - a2)),
-                            "cause": "budget" if hit else "dead end", "note": rec.note,
+                            "cause": _cause(hit, rec.rule), "note": rec.note,
                             "on_contour": _on_contour(s, a2, b2, 0.5 * run.eps)})
     return out
 

@@ -244,18 +244,23 @@ def _side_by_side(first: Callable[[], Any], second: Callable[[], Any]) -> tuple[
 
 def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence[str] = (),
             progress: Callable[[SliceRun], None] | None = None,
-            stage: Callable[[str], None] | None = None, scene: bool = False) -> Result:
+            stage: Callable[[str], None] | None = None, scene: bool = False,
+            pictures: bool = False) -> Result:
     """Sense, reconstruct and score a checked mesh and config (see :func:`run`).
 
     stage : callable(str), optional -- told when reconstruction and scoring start.
     scene : bool -- the scene's coloured ground truth will be wanted (``save``): where a
         process can fork, it is computed beside the reconstruction and the scores, on
         another core.
+    pictures : bool -- the pictures will be drawn (``save(png=True)``): pyvista's plotting
+        is loaded while the workers sense, so the picture child forked by ``save``
+        inherits it instead of loading it after the scores.
     """
     notes = list(notes)
-    # pyvista (the reconstruction's flying edges, the scores' distances) is imported while
-    # the workers sense
-    sensed = sense_mesh(mesh, name, config, progress, beside=libs.pyvista)
+    # pyvista (the reconstruction's flying edges, the scores' distances) and, for pictures,
+    # its plotting are imported while the workers sense
+    sensed = sense_mesh(mesh, name, config, progress,
+                        beside=plot.load_plotting if pictures else libs.pyvista)
     notes += sensed.nudge_notes
     # the scene's coloured ground truth beside the rest: subdivided and classified while
     # this process reconstructs, its distances to the surface taken while this one scores

@@ -49,3 +49,31 @@ def test_beside_not_called_in_one_process():
     calls = []
     sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs=1), beside=_record(calls))
     assert calls == []
+
+
+_PICTURES = """
+import sys
+import meshes
+from recon3d.api import execute
+from recon3d.spellings import make_config
+execute(meshes.load("stepped_pyramid"), "stepped_pyramid", make_config(slices=2, jobs=2),
+        pictures={pictures})
+print("pyvista.plotting" in sys.modules)
+"""
+
+
+def _plotting_loaded_by_execute(pictures: bool) -> bool:
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", _PICTURES.format(pictures=pictures)],
+                          capture_output=True, text=True, timeout=300, check=True)
+    return proc.stdout.strip().splitlines()[-1] == "True"
+
+
+def test_a_run_with_pictures_loads_pyvista_plotting_while_it_senses():
+    """``execute(pictures=True)`` (``recon3d run`` without ``--no-png``) loads pyvista's
+    plotting beside the sensing, so the picture child forked later inherits it; without
+    pictures the run never loads it (a fresh process: this one may have loaded it)."""
+    assert _plotting_loaded_by_execute(True)
+    assert not _plotting_loaded_by_execute(False)

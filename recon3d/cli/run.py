@@ -122,7 +122,8 @@ def _run(args, config, mesh, name, notes):
             bar.set_description(f"{what} {name}")
 
     try:
-        result = execute(mesh, name, config, progress=progress, stage=stage, scene=True)
+        result = execute(mesh, name, config, progress=progress, stage=stage, scene=True,
+                         pictures=not args.no_png)
         if bar is not None:
             bar.set_description(f"writing {name}")
         files = result.save(args.out, png=not args.no_png)

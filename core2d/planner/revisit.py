@@ -27,7 +27,11 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
-   one pass every eps/2 along the lid, up to ``MAX_SWEEP``.
+   one pass every eps/2 along the lid, up to ``MAX_SWEEP``. With a noisy
+   sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
+   shallow to resolve eps/2, the passes through a spot where an earlier
+   pass stopped in front of the lid, and contacts on the lid's line beyond
+   its ends.
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`holds_lid`: a W3 lid never passes
    through the solid) and if it closes

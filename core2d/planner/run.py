@@ -234,7 +234,8 @@ class Exploration:
         if _same(c, area.a, same) or _same(c, area.b, same):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
-        if beyond_ends(self.res, area.a, area.b, c):  # noisy only (core2d.planner.grazing)
+        if self.flow.map and beyond_ends(self.res, area.a, area.b, c):
+            # a noisy sensor's grazing pass past an end (core2d.planner.grazing)
             return self.defer(area, "Theorem 1 pass met the lid's line beyond its ends")
         if self.flow.map and self.known.distance(c) <= self.res.near:
             # contour the robot has recorded already (Ext, or Int traced through

@@ -12,6 +12,7 @@ the worst slice), budget hits.
 
     python -m bench.sensor_study                       # every group, every level
     python -m bench.sensor_study --groups scenes --levels 0.3:0.25 --jobs 2
+    python -m bench.sensor_study --groups scenes --slices 8 --levels 0.1:0 --only comb
 
 Groups: ``outlines`` (``--per-kind`` seeded outlines of each kind of
 ``tests/outlines.py``, exact backend, eps 1), ``scenes`` (the middle z-slice
@@ -242,6 +243,8 @@ def main(argv=None) -> int:
     p.add_argument("--per-kind", type=int, default=2, help="outlines per kind (default 2)")
     p.add_argument("--slices", type=int, default=1,
                    help="z-slices per mesh (default 1: the middle of 8)")
+    p.add_argument("--only", default="",
+                   help="comma-separated case names (before ':z', e.g. comb,deep_slot) to keep")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
     p.add_argument("--csv", type=Path, default=None,
@@ -254,7 +257,9 @@ def main(argv=None) -> int:
     if unknown or any(len(lv) != 2 or min(lv) < 0 for lv in args.levels):
         p.error(f"unknown groups {unknown}" if unknown else "levels are NOISE:TAXEL >= 0")
     levels = tuple(lv for lv in args.levels if lv != (0.0, 0.0))
-    jobs = [(g, n, fn, a, levels, args.budget) for g, n, fn, a in cases(args)]
+    only = {x.strip() for x in args.only.split(",") if x.strip()}
+    jobs = [(g, n, fn, a, levels, args.budget) for g, n, fn, a in cases(args)
+            if not only or n.split(":")[0] in only]
     print(f"sensor study: {len(jobs)} cases x {len(levels) + 1} runs, {args.jobs} jobs",
           file=sys.stderr)
     t0 = time.perf_counter()

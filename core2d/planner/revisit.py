@@ -27,7 +27,11 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
-   one pass every eps/2 along the lid, up to ``MAX_SWEEP``.
+   one pass every eps/2 along the lid, up to ``MAX_SWEEP``. With a noisy
+   sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
+   shallow to resolve eps/2, the passes through a spot where an earlier
+   pass stopped in front of the lid, and contacts on the lid's line beyond
+   its ends.
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`holds_lid`: a W3 lid never passes
    through the solid) and if it closes
@@ -69,6 +73,7 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
+from core2d.planner.grazing import Blockers, beyond_ends, steep_enough
 from core2d.planner.regions import Posture, cross, near_probe
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
@@ -214,6 +219,8 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False
+    if beyond_ends(run.res, area.a, area.b, point):  # a grazing pass past an end
+        return False
     if area.seen and np.hypot(*(np.asarray(area.seen) - point).T).min() <= same:
         return False
     for a, b in area.lineage:
@@ -277,16 +284,22 @@ def revisit_one(run: Exploration, area):
         return "no line from F crosses the lid past the recorded contour"
     if lines:
         plan = passes(lines, area.a, area.b)
-        if candidate:
-            plan += _sweep(lines, area.dist, run.eps)
+        if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
+            plan += [(p, d) for p, d in _sweep(lines, area.dist, run.eps)
+                     if steep_enough(run.res, area.a, area.b, d)]
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
                                     margin=run.res.tip_zone, min_gap=run.angle_tol)
         plan = passes(back, area.b, area.a) if back else []
     ends_only, escaped = True, False
+    blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
     for point, direction in plan:
         if not run.budget():
             return run.deferred.append(area)  # the budget ran out: still unknown
+        if blockers.stops(point, direction):  # would meet contour a pass stopped at
+            area.tries += 1
+            ends_only = False
+            continue
         probe.approach(point, direction)
         r = probe.insert(2.5 * probe.radius)
         c = r.tip_contact
@@ -301,6 +314,8 @@ def revisit_one(run: Exploration, area):
         area.tries += 1
         escaped |= c is None
         ends_only &= c is not None and _near_end(run, area, c.point, run.res.sensor_tol)
+        if c is not None and not _near_end(run, area, c.point):
+            blockers.add(area.a, area.b, r.joint, c.point)
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "

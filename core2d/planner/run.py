@@ -45,6 +45,7 @@ from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING, Flow
+from core2d.planner.grazing import beyond_ends
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.regions import Posture, near_probe
@@ -235,6 +236,9 @@ class Exploration:
         if _same(c, area.a, same) or _same(c, area.b, same):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
+        if self.flow.map and beyond_ends(self.res, area.a, area.b, c):
+            # a noisy sensor's grazing pass past an end (core2d.planner.grazing)
+            return self.defer(area, "Theorem 1 pass met the lid's line beyond its ends")
         if self.flow.map and self.known.distance(c) <= self.res.near:
             # contour the robot has recorded already (Ext, or Int traced through
             # other areas): nothing new to start the search from

@@ -25,6 +25,8 @@ pytestmark = pytest.mark.skipif(sys.platform != "linux", reason="reads /proc (Li
 # long enough to be caught while sensing on a loaded machine, short when let run
 LONG_RUN = ["run", "comb", "--slices", "24", "--jobs", "2", "--no-png"]
 DEADLINE = 60.0
+# prepended to a ``python -c`` run: SIGUSR1 prints every thread's stack (see _finish)
+_DUMP = "import faulthandler, signal; faulthandler.register(signal.SIGUSR1, all_threads=True); "
 
 
 def _start(args, out: Path) -> subprocess.Popen:
@@ -70,9 +72,13 @@ def _finish(proc: subprocess.Popen) -> tuple[int, str, str]:
     try:
         out, err = proc.communicate(timeout=DEADLINE)
     except subprocess.TimeoutExpired:
+        # a process that registered faulthandler on SIGUSR1 (_DUMP) prints every
+        # thread's stack first: where it hung
+        os.kill(proc.pid, signal.SIGUSR1)
+        time.sleep(2.0)
         os.killpg(proc.pid, signal.SIGKILL)
-        proc.communicate()
-        pytest.fail("the run hung")
+        _, err = proc.communicate()
+        pytest.fail(f"the run hung; its stacks:\n{err[-6000:]}")
     return proc.returncode, out, err
 
 
@@ -199,7 +205,7 @@ def test_a_closed_stdout_is_no_traceback(tmp_path):
 def test_ctrl_c_to_an_api_run_prints_no_worker_traceback():
     """Python's own SIGINT handler (no CLI): the workers ignore Ctrl-C; only the
     caller's KeyboardInterrupt is raised, and no worker is left behind."""
-    code = "import recon3d; recon3d.run('comb', slices=24, jobs=2)"
+    code = _DUMP + "import recon3d; recon3d.run('comb', slices=24, jobs=2)"
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)

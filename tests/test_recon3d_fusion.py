@@ -323,3 +323,5 @@ def test_space_beside_an_unknown_chord_is_unswept_on_either_side(reverse):
     assert not shapely.contains_xy(region.geometry, *wedge.T).any()
     assert unswept(region, wedge, 0.25).all()
     assert not unswept(region, beside_wall, 0.25).any()
+    assert not unswept(region, wedge, 0.25, reach=4.0).any()  # 1.5 from the chord: beyond
+    assert unswept(region, wedge, 0.25, reach=8.0).all()

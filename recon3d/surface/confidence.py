@@ -35,8 +35,8 @@ from scipy.spatial import cKDTree
 from recon3d.surface.closure import sample_pieces
 from recon3d.surface.warp import boundary_samples
 
-__all__ = ["ConfidenceSettings", "seen_map", "unswept", "agreement", "cone", "between_confidence",
-           "in_plane_share"]
+__all__ = ["ConfidenceSettings", "seen_map", "unswept", "agreement", "cone",
+           "between_confidence", "in_plane_share"]
 
 
 @dataclass(frozen=True)
@@ -115,7 +115,7 @@ def seen_map(region, f: np.ndarray, grid, settings: ConfidenceSettings = Confide
 
 
 def unswept(region, pts: np.ndarray, step: float, reach: float = np.inf) -> np.ndarray:
-    """(n,) bool: points whose nearest piece of a slice is an unknown chord.
+    """(n,) bool: points within ``reach`` steps of an unknown chord, their nearest piece.
 
     An unknown chord is the lid A_iB_i of an area still unknown at the end (§3.3). The
     unknown contour C_{A_i}^{B_i} runs from A_i to B_i anywhere in G_i (Def. 1): material

@@ -264,3 +264,64 @@ def test_space_closed_by_a_lid_is_not_a_sensed_solid():
                               int(round((x_ - grid.x0) / grid.step))]
     assert at(1.0, 5.0) == 1.0  # in the cup's wall: W1 on both sides
     assert at(5.0, 8.0) == 0.0  # inside the cup, under the lid: closed, not sensed
+
+
+def _block_with_unswept_wedge(trust):
+    """A 20 mm cube. Family x: its exact sections (solid everywhere inside). Family z: each
+    plane traced all round but for a 5 mm stretch of one side, from whose ends two unknown
+    chords meet at the centre -- the lids of an area the planner never explored. The closure
+    leaves that wedge *outside* (no piece closes its mouth), as it left parts of the open
+    teapot's pot outside beside the unknown chords crossing it."""
+    mesh = trimesh.creation.box((20.0, 20.0, 20.0))
+    x = _solid(mesh, "x", 8, 0.25)
+    cuts = slicer.slice_mesh(mesh, axis="z", count=6)
+    regions = []
+    for c in cuts:
+        (x0, y0), (x1, y1) = c.loops[0].min(axis=0), c.loops[0].max(axis=0)
+        xm, mid = (x0 + x1) / 2, np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+        w1 = [np.array([[xm, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0], [xm - 5.0, y0]])]
+        chords = [np.array([[xm - 5.0, y0], mid]), np.array([mid, [xm, y0]])]
+        regions.append(slice_region(w1, [], [], chords, 1e-6))
+    z = family_solid(regions, [c.plane for c in cuts], 0.25, "warp", True, trust)
+    plane = cuts[2].plane  # a point in the wedge, half-way between z planes 2 and 3
+    (x0, y0), (x1, y1) = cuts[2].loops[0].min(axis=0), cuts[2].loops[0].max(axis=0)
+    u, v = (x0 + x1) / 2 - 2.5, y0 + (y1 - y0) / 6
+    height = (cuts[3].plane.offset - plane.offset) / 2
+    point = plane.origin + u * plane.u + v * plane.v + height * np.asarray(plane.normal)
+    return mesh, z, x, point[None]
+
+
+def test_an_empty_beside_an_unknown_chord_is_not_shown_empty_and_cannot_carve_a_solid():
+    """The rule: a family removes space only where its own sensing shows it empty. z's
+    planes leave the wedge outside their regions only because no piece closes it; the
+    unknown contour between a chord's ends may stand on either side of the chord (Def. 1,
+    §3.2), so beside it nothing was shown empty (``ConfidenceSettings.unswept``): x's
+    solid stays."""
+    mesh, z, x, point = _block_with_unswept_wedge(ConfidenceSettings())
+    assert mesh.contains(point)[0] and fuse([x], mesh.bounds).contains(point)[0]
+    assert not fuse([z], mesh.bounds).contains(point)[0]  # z's closure leaves the wedge out
+    assert fuse([z, x], mesh.bounds).contains(point)[0]
+    # an empty beside an unknown chord counted as shown empty carves x's solid
+    _, zs, _, _ = _block_with_unswept_wedge(ConfidenceSettings(unswept=False))
+    assert not fuse([zs, x], mesh.bounds).contains(point)[0]
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_space_beside_an_unknown_chord_is_unswept_on_either_side(reverse):
+    """A square traced but for a stretch of its bottom side, two unknown chords from that
+    stretch's ends to the centre. The wedge between them lies outside the region on the
+    chords' unknown side (right of A -> B) or, reversed, on their free side V_i: either way
+    it was not shown empty. Outside next to the traced wall it was."""
+    from recon3d.surface.confidence import unswept
+    w1 = [np.array([[10.0, 0.0], [20.0, 0.0], [20.0, 20.0], [0.0, 20.0], [0.0, 0.0],
+                    [5.0, 0.0]])]
+    chords = [np.array([[5.0, 0.0], [10.0, 10.0]]), np.array([[10.0, 10.0], [10.0, 0.0]])]
+    if reverse:
+        chords = [c[::-1] for c in chords[::-1]]
+    region = slice_region(w1, [], [], chords, 1e-6)
+    wedge, beside_wall = np.array([[8.5, 3.0]]), np.array([[15.0, -1.0]])
+    assert not shapely.contains_xy(region.geometry, *wedge.T).any()
+    assert unswept(region, wedge, 0.25).all()
+    assert not unswept(region, beside_wall, 0.25).any()
+    assert not unswept(region, wedge, 0.25, reach=4.0).any()  # 1.5 from the chord: beyond
+    assert unswept(region, wedge, 0.25, reach=8.0).all()

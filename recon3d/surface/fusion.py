@@ -5,8 +5,10 @@ its sensed slices), never by its interpolation alone; every family adds what onl
 Each family ``f`` brings its field ``F_f`` (:mod:`recon3d.surface.field`, positive inside) and
 its confidence ``c_f`` (:mod:`recon3d.surface.confidence`): 1 where its slices show the space
 empty or right behind a traced W1/W2 wall, ``unseen`` (0.03) in what it only filled in (holes,
-behind W3 lids, bridges), and between its slices only as much as its two neighbouring slices
-agree there. The fused field is
+behind W3 lids, bridges) and in what its closure left out beside an unknown chord (within
+``ConfidenceSettings.unswept_reach`` steps: not shown empty either, the unknown contour may
+stand on either side of the chord), and between its
+slices only as much as its two neighbouring slices agree there. The fused field is
 
     F(x) = sum_f c_f(x)^p F_f(x) / sum_f c_f(x)^p      (p = ``power``, 2)
 

@@ -288,10 +288,11 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     gt : GroundTruthSamples -- in the evaluation domain.
     cloud : ContourCloud -- reference samples of the slices used.
-    pair : callable(first, second) -> (first(), second()) -- how the two VTK distance
-        calls run (reconstruction -> ground truth, ground truth -> reconstruction): one
-        after the other here, or side by side on two cores (:func:`recon3d.api.execute`
-        passes a forked one); the numbers are the same.
+    pair : callable(first, second) -> (first(), second()) -- how the two halves of the VTK
+        distances run (each half: half the reconstruction's samples -> ground truth, half
+        the ground truth's -> reconstruction): one after the other here, or side by side
+        on two cores (:func:`recon3d.api.execute` passes a forked one); the numbers are
+        the same.
 
     Returns
     -------
@@ -302,16 +303,19 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     taus = {k: s * gt.diagonal for k, s in FSCORE_SHARES.items()}
     scored = scored_part(surface)
     rec = _sample(scored, count, seed) if scored is not None else np.zeros((0, 3))
-    # the ground-truth side is the costly call (points to the reconstruction's many
-    # faces): its points are split between the two calls (a point's distance does not
-    # depend on the others)
+    # both directions split in halves between the two calls (a point's distance does not
+    # depend on the others): which one costs more depends on the meshes (the ground truth
+    # to a finely meshed reconstruction, or samples to a large ground-truth mesh)
+    half_rec = len(rec) // 2
     half = len(gt.points) // 2 if scored is not None else 0
 
     def to_rec(pts):
         return distances(pts, scored) if scored is not None else np.full(len(pts), np.inf)
 
-    (d_rec, d_gt0), d_gt1 = pair(lambda: (distances(rec, gt.mesh), to_rec(gt.points[:half])),
-                                 lambda: to_rec(gt.points[half:]))
+    (d_rec0, d_gt0), (d_rec1, d_gt1) = pair(
+        lambda: (distances(rec[:half_rec], gt.mesh), to_rec(gt.points[:half])),
+        lambda: (distances(rec[half_rec:], gt.mesh), to_rec(gt.points[half:])))
+    d_rec = np.concatenate([d_rec0, d_rec1])
     d_gt = np.concatenate([d_gt0, d_gt1])
     cls = cloud.classify(gt.points)
     reach = (cls == 1) | (cls == 2)

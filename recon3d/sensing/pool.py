@@ -43,6 +43,7 @@ import numpy as np
 import trimesh
 
 from recon3d.records import Family, SliceRun
+from recon3d.sensing.kernels import load_numba_target
 from recon3d.sensing.worker import SenseSettings, WorkerState
 
 __all__ = ["sense_all", "WorkerDied", "describe_exit"]
@@ -277,6 +278,7 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
                 progress(out[k])
         return out
     if "fork" in multiprocessing.get_all_start_methods():
+        load_numba_target()  # once here, inherited by every worker (and later side process)
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
         _STATE = WorkerState(settings, families)  # inherited by the forked workers
     else:  # pragma: no cover - no fork on this platform

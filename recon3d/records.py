@@ -79,6 +79,8 @@ class SliceRun:
     truth : ContourTruth
     motion_rows : str or None -- this slice's rows of ``motions.csv``, made by the worker
         that sensed it (:func:`recon3d.io.motions.slice_rows`; None: made when written).
+    document : dict or None -- this slice's entry of ``sensing.json``, made by the worker
+        that sensed it (:func:`recon3d.io.documents.slice_document`; None: made when written).
     """
 
     slice: slicer.Slice | None
@@ -89,6 +91,7 @@ class SliceRun:
     workspace: tuple
     truth: ContourTruth
     motion_rows: str | None = None
+    document: dict | None = None
 
     @property
     def has_reference(self) -> bool:

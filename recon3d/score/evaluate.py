@@ -48,7 +48,7 @@ from recon3d.score.closest import mesh_distances
 from recon3d.records import Family
 from recon3d.viz import libs
 
-__all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",
+__all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
            "GroundTruthSamples", "classified_ground_truth", "surface_distances",
            "coverage_mesh", "surface_metrics", "one_after_other", "distances", "scored_part"]
 
@@ -129,16 +129,19 @@ class ContourCloud:
         return cls
 
 
-def _on_holes(srun, points) -> np.ndarray:
+def on_holes(cut, points) -> np.ndarray:
     """(m,) bool: which (m, 2) reference samples of a slice lie nearest a hole loop.
 
+    cut : slicer.Slice -- its ``loops`` and ``holes``.
+
     The nearest loop is the one of the nearest loop segment (one STRtree query for all
-    samples); between loops at the same distance, the first, as an argmin over loops."""
-    holes = np.asarray(srun.slice.holes, dtype=bool)
+    samples); between loops at the same distance, the first, as an argmin over loops.
+    The sensing worker computes it with the slice's samples (``ContourTruth.in_hole``)."""
+    holes = np.asarray(cut.holes, dtype=bool)
     if not holes.any() or not len(points):
         return np.zeros(len(points), dtype=bool)
     segs, owner = [], []
-    for k, lp in enumerate(srun.slice.loops):
+    for k, lp in enumerate(cut.loops):
         ring = np.asarray(lp, dtype=np.float64).reshape(-1, 2)
         ring = np.vstack([ring, ring[:1]])  # closed, as a LinearRing
         segs.append(np.stack([ring[:-1], ring[1:]], axis=1))
@@ -170,7 +173,8 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
                 pts.append(s.slice.to_3d(s.truth.points))
                 reach.append(s.truth.reachable)
                 cov.append(s.truth.covered)
-                hole.append(_on_holes(s, s.truth.points))
+                hole.append(s.truth.in_hole if s.truth.in_hole is not None
+                            else on_holes(s.slice, s.truth.points))
                 fam.append(np.full(len(s.truth.points), k))
     fam = np.concatenate(fam) if fam else np.zeros(0, dtype=np.int64)
     slabs = Domain(np.array(normals).reshape(-1, 3), np.array(lo), np.array(hi))

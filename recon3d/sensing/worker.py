@@ -29,6 +29,7 @@ from core2d.truth.reachability import reachable_samples
 from recon3d.io.documents import slice_document
 from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
+from recon3d.score.evaluate import on_holes
 
 __all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics"]
 
@@ -183,5 +184,6 @@ class WorkerState:
                                           spacing=st.spacing, samples=samples))
         samp, reach = samples
         covered = reach & _covered(samp.points, result, st.metric_tol)
-        truth = ContourTruth(samp.points, samp.lengths, reach, covered)
+        truth = ContourTruth(samp.points, samp.lengths, reach, covered,
+                             on_holes(cut, samp.points))
         return SliceRun(None, family, index, result, metrics, workspace, truth)

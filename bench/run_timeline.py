@@ -9,6 +9,10 @@ order, grouped by process, with wall offsets from the interpreter's start, and t
 every process.
 
     python -m bench.run_timeline bored_block [--slices 8] [--jobs 2] [--no-png] [--profile]
+                                 [--root DIR]
+
+``--root``: the files of another checkout (e.g. ``out/compare/src-<hash>`` of
+:mod:`bench.compare_commits`); phases it lacks are skipped.
 
 ``--profile``: cProfile of the main process too (top functions by cumulative time).
 """
@@ -107,8 +111,11 @@ def wrap(fn, label):
             log(label, t0, time.time(), c0, time.thread_time(), p0, time.process_time(), extra)
     return inner
 for mod, name, label in json.loads(os.environ["TIMELINE_PHASES"]):
-    owner = resolve(mod)
-    setattr(owner, name, wrap(getattr(owner, name), label))
+    try:
+        owner = resolve(mod)
+        setattr(owner, name, wrap(getattr(owner, name), label))
+    except AttributeError:  # an older checkout without this phase
+        pass
 code = cli_main(sys.argv[1:])
 t = os.times()
 log("main total", T_IMPORT, time.time(), 0, time.process_time(), 0, time.process_time(),
@@ -137,10 +144,11 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", default="2")
     ap.add_argument("--no-png", action="store_true")
     ap.add_argument("--profile", action="store_true", help="cProfile of the main process")
+    ap.add_argument("--root", default=str(ROOT), help="checkout whose files run (default: this)")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         logf = Path(tmp) / "log.jsonl"
-        env = dict(os.environ, PYTHONPATH=str(ROOT), TIMELINE_LOG=str(logf),
+        env = dict(os.environ, PYTHONPATH=str(args.root), TIMELINE_LOG=str(logf),
                    TIMELINE_PHASES=json.dumps(PHASES),
                    VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
         code = _DRIVER if not args.profile else f"DRIVER = {_DRIVER!r}\n" + _PROFILE
@@ -149,7 +157,7 @@ def main(argv=None) -> int:
         if args.no_png:
             cmd.append("--no-png")
         t0 = time.time()
-        proc = subprocess.run(cmd, env=env, cwd=str(ROOT), capture_output=True, text=True)
+        proc = subprocess.run(cmd, env=env, cwd=str(args.root), capture_output=True, text=True)
         wall = time.time() - t0
         if proc.returncode:
             sys.stderr.write(proc.stderr[-3000:])

@@ -273,11 +273,14 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     sensed = sense_mesh(mesh, name, config, progress,
                         beside=plot.load_plotting if pictures else libs.pyvista)
     notes += sensed.nudge_notes
-    drawing = Side(_slices_png, sensed) if pictures and can_fork() else None
-    # the scene's coloured ground truth beside the rest: subdivided and classified while
-    # this process reconstructs, its distances to the surface taken while this one scores
-    side = Side(_classified_arrays, mesh, sensed) if scene and can_fork() else None
+    drawing = side = None
     try:
+        if pictures and can_fork():  # slices.png needs the sensing only
+            drawing = Side(_slices_png, sensed)
+        # the scene's coloured ground truth beside the rest: subdivided and classified while
+        # this process reconstructs, its distances to the surface taken while this one scores
+        if scene and can_fork():
+            side = Side(_classified_arrays, mesh, sensed)
         if stage is not None:
             stage("reconstructing")
         recon = reconstruct(sensed)

@@ -106,3 +106,23 @@ def test_numba_target_loaded_once_in_the_parent_before_the_workers_fork():
     them (they and the run's side processes inherit it); the parent itself loads no kernel,
     so without the workers' fork nothing in it would (a fresh process)."""
     assert _numba_target_in_parent(2) == "False True"
+
+
+def test_beside_thread_leaves_the_stop_signals_to_the_main_thread():
+    """A Ctrl-C delivered to the beside thread would leave the main thread waiting for a
+    worker's next slice: the thread blocks SIGINT, SIGTERM and SIGHUP, so they reach the
+    main thread (whose mask is untouched)."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return
+    mesh = meshes.load("stepped_pyramid")
+    masks = []
+
+    def beside():
+        masks.append(signal.pthread_sigmask(signal.SIG_BLOCK, []))
+
+    sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs=2), beside=beside)
+    assert len(masks) == 1
+    assert {signal.SIGINT, signal.SIGTERM, signal.SIGHUP} <= set(masks[0])
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])

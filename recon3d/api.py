@@ -27,7 +27,7 @@ from recon3d.checks import InputError, check_flag, check_out_dir
 from recon3d.config import RunConfig, diagonal, validate
 from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
-from recon3d.io.outputs import write_outputs
+from recon3d.io.outputs import slices_png_bytes, write_outputs
 from recon3d.io.side import Side, can_fork
 from recon3d.records import MeshRun, SliceRun
 from recon3d.score import score
@@ -76,6 +76,7 @@ class Result:
     warnings: list[str]
     _blocks: Any = field(default=None, init=False, repr=False, compare=False)
     _coverage: trimesh.Trimesh | None = field(default=None, repr=False, compare=False)
+    _slices_png: bytes | None = field(default=None, repr=False, compare=False)
 
     @property
     def slices(self) -> list[SliceRun]:
@@ -172,7 +173,7 @@ class Result:
         check_out_dir(out, "out")
         return write_outputs(out, self.sensing_document(), self.metrics, self.surface,
                              self.blocks, title=self.sensing.name, png=png,
-                             slices=self.slices)
+                             slices=self.slices, slices_png=self._slices_png)
 
 
 def _checked(mesh: trimesh.Trimesh, name: str, drop_nonfinite: bool) -> trimesh.Trimesh:
@@ -227,6 +228,14 @@ def _classified_arrays(mesh: trimesh.Trimesh, sensed: MeshRun) -> tuple:
     return gt.vertices, gt.faces, gt.face_attributes["coverage"]
 
 
+def _slices_png(sensed: MeshRun) -> bytes:
+    """``slices.png`` of a sensed run (:func:`recon3d.io.outputs.slices_png_bytes`): it
+    reads the per-slice metrics only, known once the slices are sensed (the per-slice part
+    of the ``metrics.json`` document is the same before and after the scores)."""
+    return slices_png_bytes(sensing_document(sensed), metrics_document(sensed, None, {}),
+                            sensed.slices, title=sensed.name)
+
+
 def _side_by_side(first: Callable[[], Any], second: Callable[[], Any]) -> tuple[Any, Any]:
     """``(first(), second())`` with ``first`` in a forked child (:class:`recon3d.io.side.Side`)
     while this process runs ``second``: the scores' two VTK distance calls on two cores."""
@@ -254,7 +263,9 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
         another core.
     pictures : bool -- the pictures will be drawn (``save(png=True)``): pyvista's plotting
         is loaded while the workers sense, so the picture child forked by ``save``
-        inherits it instead of loading it after the scores.
+        inherits it instead of loading it after the scores (no render window is made, so
+        this process can still fork), and ``slices.png`` is drawn by a side process while
+        this one reconstructs and scores.
     """
     notes = list(notes)
     # pyvista (the reconstruction's flying edges, the scores' distances) and, for pictures,
@@ -262,10 +273,14 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     sensed = sense_mesh(mesh, name, config, progress,
                         beside=plot.load_plotting if pictures else libs.pyvista)
     notes += sensed.nudge_notes
-    # the scene's coloured ground truth beside the rest: subdivided and classified while
-    # this process reconstructs, its distances to the surface taken while this one scores
-    side = Side(_classified_arrays, mesh, sensed) if scene and can_fork() else None
+    drawing = side = None
     try:
+        if pictures and can_fork():  # slices.png needs the sensing only
+            drawing = Side(_slices_png, sensed)
+        # the scene's coloured ground truth beside the rest: subdivided and classified while
+        # this process reconstructs, its distances to the surface taken while this one scores
+        if scene and can_fork():
+            side = Side(_classified_arrays, mesh, sensed)
         if stage is not None:
             stage("reconstructing")
         recon = reconstruct(sensed)
@@ -282,10 +297,18 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
         if side is not None:
             gt.vertex_attributes["distance"] = side.result()
             side = None
+        png = None
+        if drawing is not None:
+            try:
+                png = drawing.result()
+            except RuntimeError:  # drawn again by save, where its error is reported
+                png = None
+            drawing = None
     finally:
-        if side is not None:
-            side.stop()
-    return Result(mesh, sensed, recon, doc, notes, _coverage=gt)
+        for child in (side, drawing):
+            if child is not None:
+                child.stop()
+    return Result(mesh, sensed, recon, doc, notes, _coverage=gt, _slices_png=png)
 
 
 def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,

@@ -53,17 +53,21 @@ class ContourTruth:
     lengths : (m,) float -- contour length each sample stands for.
     reachable : (m,) bool -- exact 2D reachability.
     covered : (m,) bool -- reachable and within ``metric_tol`` of W1 u W2.
+    in_hole : (m,) bool or None -- nearest a hole loop of the section
+        (:func:`recon3d.score.evaluate.on_holes`, made by the worker that sensed the slice;
+        None: computed where needed).
     """
 
     points: np.ndarray
     lengths: np.ndarray
     reachable: np.ndarray
     covered: np.ndarray
+    in_hole: np.ndarray | None = None
 
     @classmethod
     def empty(cls) -> ContourTruth:
         z = np.zeros(0, dtype=bool)
-        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy())
+        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy(), z.copy())
 
 
 @dataclass
@@ -79,6 +83,8 @@ class SliceRun:
     truth : ContourTruth
     motion_rows : str or None -- this slice's rows of ``motions.csv``, made by the worker
         that sensed it (:func:`recon3d.io.motions.slice_rows`; None: made when written).
+    document : dict or None -- this slice's entry of ``sensing.json``, made by the worker
+        that sensed it (:func:`recon3d.io.documents.slice_document`; None: made when written).
     """
 
     slice: slicer.Slice | None
@@ -89,6 +95,7 @@ class SliceRun:
     workspace: tuple
     truth: ContourTruth
     motion_rows: str | None = None
+    document: dict | None = None
 
     @property
     def has_reference(self) -> bool:

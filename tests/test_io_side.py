@@ -180,3 +180,66 @@ def test_no_side_process_inside_a_daemonic_worker():
     ctx = multiprocessing.get_context("fork")
     with ctx.Pool(1) as pool:
         assert pool.map(_can_fork_here, [0]) == [False]
+
+
+def test_slices_png_drawn_beside_the_scores_is_the_one_saved(pocket, tmp_path, monkeypatch,
+                                                             forking):
+    """``execute(pictures=True)`` draws slices.png in a side process while it reconstructs;
+    ``save`` writes those bytes, the very bytes drawn here from the finished documents."""
+    import recon3d.api as api
+
+    config = make_config(slices=2, eps=pocket.sensing.eps, jobs=1)
+    monkeypatch.setattr(plot, "load_plotting", lambda: None)  # no beside thread with jobs=1
+    res = api.execute(pocket.mesh, "fig17_pocket", config, pictures=True)
+    assert res._slices_png is not None and res._slices_png[:8] == b"\x89PNG\r\n\x1a\n"
+    here = tmp_path / "here.png"
+    outputs.write_slices_png(here, res.sensing_document(), res.metrics, res.slices,
+                             res.sensing.name)
+    assert res._slices_png == here.read_bytes()
+
+    def again(*args, **kwargs):
+        raise AssertionError("slices.png drawn twice")
+
+    monkeypatch.setattr(outputs, "write_slices_png", again)
+    monkeypatch.setattr(plot, "save_png", _pid_png)
+    monkeypatch.setattr(outputs, "can_fork", lambda: False)
+    res.save(tmp_path / "out")
+    assert (tmp_path / "out" / "slices.png").read_bytes() == here.read_bytes()
+
+
+_GL_PROBE = """
+import sys
+from recon3d.io.side import can_fork, gl_loaded
+import pyvista.plotting
+import pyvista as pv
+before = (gl_loaded(), can_fork())
+p = pv.Plotter(off_screen=True)
+print(before, (gl_loaded(), can_fork()))
+p.close()
+"""
+
+
+def test_pyvista_plotting_loaded_still_forks_a_render_window_does_not():
+    """Importing pyvista's plotting (beside the sensing) maps no OpenGL library: the run can
+    still fork its side processes; once a render window exists it may not (a fresh process:
+    this one may have made windows)."""
+    import subprocess
+    import sys
+
+    env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
+    proc = subprocess.run([sys.executable, "-c", _GL_PROBE], capture_output=True, text=True,
+                          timeout=300, env=env)
+    if proc.returncode != 0:
+        pytest.skip(f"no off-screen render window here: {proc.stderr.strip()[-200:]}")
+    assert proc.stdout.split("\n")[0] == "(False, True) (True, False)"
+
+
+def test_gl_loaded_reads_the_mapped_libraries(tmp_path):
+    from recon3d.io.side import gl_loaded
+
+    maps = tmp_path / "maps"
+    maps.write_text("7f0-7f1 r-xp 0 08:01 1 /usr/lib/x86_64-linux-gnu/libm.so.6\n"
+                    "7f2-7f3 rw-p 0 00:00 0 [heap]\n")
+    assert not gl_loaded(str(maps))
+    maps.write_text(maps.read_text() + "7f4-7f5 r-xp 0 08:01 2 /usr/lib/libEGL_mesa.so.0\n")
+    assert gl_loaded(str(maps))

@@ -164,3 +164,26 @@ def test_rows_made_in_the_worker_are_the_rows_made_when_written(pocket_run):
     marked = [dataclasses.replace(s, motion_rows=f"sent {k}")
               for k, s in enumerate(pocket_run.slices)]
     assert motions_text(marked).splitlines()[1:] == [f"sent {k}" for k in range(len(marked))]
+
+
+def test_sensing_json_entries_made_in_the_worker_are_the_ones_made_when_written(pocket_run):
+    """Each worker sends its slice's sensing.json entry back with the slice: the entry the
+    parent would have made, and the document takes it as sent."""
+    import dataclasses
+
+    from recon3d.io.documents import sensing_document, slice_document
+
+    def with_slices(slices):
+        fam = dataclasses.replace(pocket_run.sensing.families[0], slices=slices)
+        return dataclasses.replace(pocket_run.sensing, families=[fam])
+
+    assert len(pocket_run.sensing.families) == 1
+    assert all(s.document is not None for s in pocket_run.slices)
+    for s in pocket_run.slices:
+        assert s.document == slice_document(s)
+    plain = [dataclasses.replace(s, document=None) for s in pocket_run.slices]
+    assert sensing_document(with_slices(plain)) == pocket_run.sensing_document()
+    marked = [dataclasses.replace(s, document={"sent": k})
+              for k, s in enumerate(pocket_run.slices)]
+    assert sensing_document(with_slices(marked))["slices"] == [{"sent": k}
+                                                               for k in range(len(marked))]

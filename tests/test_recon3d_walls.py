@@ -30,7 +30,8 @@ ALLOWED = {
     "viz": set(),
     "surface": {LIBS},
     "score": {"recon3d.surface", LIBS},
-    "sensing": {"recon3d.surface", "recon3d.io"},  # a slice's motions.csv rows, in its worker
+    # a slice's motions.csv rows and the samples of its section on holes, in its worker
+    "sensing": {"recon3d.surface", "recon3d.io", "recon3d.score"},
     "io": {"recon3d.viz"},
     "api": {"recon3d.sensing", "recon3d.surface", "recon3d.score", "recon3d.io",
             "recon3d.viz"},

@@ -77,3 +77,52 @@ def test_a_run_with_pictures_loads_pyvista_plotting_while_it_senses():
     pictures the run never loads it (a fresh process: this one may have loaded it)."""
     assert _plotting_loaded_by_execute(True)
     assert not _plotting_loaded_by_execute(False)
+
+
+_NUMBA_TARGET = """
+import meshes
+from numba.core.imputils import builtin_registry
+from numba.core.registry import cpu_target
+from recon3d.sensing import sense_mesh
+from recon3d.spellings import make_config
+mesh = meshes.load("stepped_pyramid")
+before = builtin_registry in cpu_target.target_context._registries
+sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs={jobs}))
+print(before, builtin_registry in cpu_target.target_context._registries)
+"""
+
+
+def _numba_target_in_parent(jobs: int) -> str:
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", _NUMBA_TARGET.format(jobs=jobs)],
+                          capture_output=True, text=True, timeout=300, check=True)
+    return proc.stdout.strip().splitlines()[-1]
+
+
+def test_numba_target_loaded_once_in_the_parent_before_the_workers_fork():
+    """With worker processes, the parent initialises numba's CPU target before forking
+    them (they and the run's side processes inherit it); the parent itself loads no kernel,
+    so without the workers' fork nothing in it would (a fresh process)."""
+    assert _numba_target_in_parent(2) == "False True"
+
+
+def test_beside_thread_leaves_the_stop_signals_to_the_main_thread():
+    """A Ctrl-C delivered to the beside thread would leave the main thread waiting for a
+    worker's next slice: the thread blocks SIGINT, SIGTERM and SIGHUP, so they reach the
+    main thread (whose mask is untouched)."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return
+    mesh = meshes.load("stepped_pyramid")
+    masks = []
+
+    def beside():
+        masks.append(signal.pthread_sigmask(signal.SIG_BLOCK, []))
+
+    sense_mesh(mesh, "stepped_pyramid", make_config(slices=2, jobs=2), beside=beside)
+    assert len(masks) == 1
+    assert {signal.SIGINT, signal.SIGTERM, signal.SIGHUP} <= set(masks[0])
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])

@@ -11,7 +11,8 @@ import numpy as np
 
 from recon3d.records import MeshRun, SliceRun
 
-__all__ = ["sensing_document", "metrics_document", "without_timing", "ROBOT_RULE"]
+__all__ = ["sensing_document", "slice_document", "metrics_document", "without_timing",
+           "ROBOT_RULE"]
 
 ROBOT_RULE = "robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
 
@@ -46,8 +47,14 @@ def _area_logs(cut, records) -> list:
              "note": rec.note} for k, rec in enumerate(records)]
 
 
-def _slice_document(srun: SliceRun) -> dict:
-    cut, res = srun.slice, srun.result
+def slice_document(srun: SliceRun, cut=None) -> dict:
+    """The ``sensing.json`` entry of one slice (DESIGN.md contract): its plane, its W1 / W2 /
+    W3 segments, unknown polylines and A_iB_i records in world coordinates, its counters.
+
+    cut : slicer.Slice, optional -- the slice sensed (default ``srun.slice``): a worker
+        makes the entry before the parent fills in ``srun.slice``.
+    """
+    cut, res = (srun.slice if cut is None else cut), srun.result
     plane = cut.plane
     at = res.known_at  # the motion after which each piece was recorded
     segments = [{"class": cls.upper(), "points": _world(cut, w), "motion": int(k)}
@@ -84,7 +91,8 @@ def sensing_document(run: MeshRun) -> dict:
         "backend": run.config.backend,
         "method": run.config.method,
         "families": _families(run),
-        "slices": [_slice_document(s) for s in run.slices],
+        "slices": [s.document if s.document is not None else slice_document(s)
+                   for s in run.slices],
     }
 
 

@@ -14,6 +14,7 @@ Without pictures, the child writes ``scene.vtm`` while this process writes the r
 """
 from __future__ import annotations
 
+import io
 import json
 import warnings
 from pathlib import Path
@@ -29,7 +30,7 @@ from recon3d.viz import plot
 from recon3d.viz.multiples import save_multiples
 from recon3d.viz.sliceview import slice_views
 
-__all__ = ["OUTPUTS", "write_outputs", "write_json", "write_slices_png"]
+__all__ = ["OUTPUTS", "write_outputs", "write_json", "write_slices_png", "slices_png_bytes"]
 
 OUTPUTS = ("sensing.json", "metrics.json", "motions.csv", "surface.ply", "scene.vtm",
            "coverage.png", "slices.png")
@@ -57,6 +58,9 @@ def _render(blocks, path, title) -> None:
 def write_slices_png(path, sensing: dict, metrics: dict, slices=(), title: str = "") -> None:
     """Draw ``slices.png``: one small 2D panel per slice (:mod:`recon3d.viz.multiples`).
 
+    path : path or binary file -- where the PNG goes.
+    metrics : dict -- the ``metrics.json`` document, or any dict with its ``method`` and
+        ``slices`` (all the picture reads: the per-slice coverage).
     slices : list of recon3d.records.SliceRun -- their reference loops are the true
         sections drawn in grey (slice frame); none without them.
     """
@@ -69,8 +73,17 @@ def write_slices_png(path, sensing: dict, metrics: dict, slices=(), title: str =
     save_multiples(views, path, title=f"{title}  ·  method {method}".strip(" ·"))
 
 
+def slices_png_bytes(sensing: dict, metrics: dict, slices=(), title: str = "") -> bytes:
+    """``slices.png`` as bytes (:func:`write_slices_png`): drawn before the run's directory
+    exists, e.g. in a side process while the surface is rebuilt."""
+    buf = io.BytesIO()
+    write_slices_png(buf, sensing, metrics, slices, title)
+    return buf.getvalue()
+
+
 def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, blocks,
-                  title: str = "", png: bool = True, slices=()) -> list[Path]:
+                  title: str = "", png: bool = True, slices=(),
+                  slices_png: bytes | None = None) -> list[Path]:
     """Write the outputs of one run into ``out``.
 
     Parameters
@@ -84,6 +97,8 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
         ``slices.png``.
     slices : list of recon3d.records.SliceRun -- their motion logs make ``motions.csv``,
         their true sections go into ``slices.png``.
+    slices_png : bytes, optional -- ``slices.png`` already drawn (:func:`slices_png_bytes`):
+        written as it is instead of drawn again.
 
     Returns
     -------
@@ -98,8 +113,8 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
         # (without pictures the child writes scene.vtm, the slowest file, instead)
         side = None
         if can_fork():
-            side = (Side(_pictures, stage, title, sensing, metrics, slices, scene) if png
-                    else Side(_save_scene, scene, stage))
+            side = (Side(_pictures, stage, title, sensing, metrics, slices, scene, slices_png)
+                    if png else Side(_save_scene, scene, stage))
         try:
             if png or side is None:
                 _save_scene(scene, stage)
@@ -109,7 +124,7 @@ def write_outputs(out, sensing: dict, metrics: dict, surface: trimesh.Trimesh, b
             ply.write_ply(stage / "surface.ply", surface.vertices, surface.faces,
                           np.asarray(surface.face_attributes["label"]))
             if png and side is None:
-                _pictures(stage, title, sensing, metrics, slices, scene)
+                _pictures(stage, title, sensing, metrics, slices, scene, slices_png)
             elif side is not None:
                 side.result()
                 side = None
@@ -124,9 +139,13 @@ def _save_scene(scene, stage: Path) -> None:
     scene.save(str(stage / "scene.vtm"))
 
 
-def _pictures(stage: Path, title: str, sensing: dict, metrics: dict, slices, scene) -> None:
-    """Load pyvista's plotting, draw ``slices.png``, render ``scene`` as ``coverage.png``
-    (in the child, or here)."""
+def _pictures(stage: Path, title: str, sensing: dict, metrics: dict, slices, scene,
+              slices_png: bytes | None = None) -> None:
+    """Load pyvista's plotting, draw ``slices.png`` (or write the one drawn already), render
+    ``scene`` as ``coverage.png`` (in the child, or here)."""
     plot.load_plotting()
-    write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
+    if slices_png is None:
+        write_slices_png(stage / "slices.png", sensing, metrics, slices, title)
+    else:
+        (stage / "slices.png").write_bytes(slices_png)
     _render(scene, stage / "coverage.png", title)

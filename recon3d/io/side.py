@@ -22,17 +22,37 @@ import warnings
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["Side", "can_fork"]
+__all__ = ["Side", "can_fork", "gl_loaded"]
 
 _GL = "vtkmodules.vtkRenderingOpenGL2"
-"""Loaded once a render window may exist: a forked child must not share its context."""
+"""VTK's OpenGL module: where the process maps can not be read, loading it counts as a
+render window that may exist."""
+
+_GL_LIBS = ("libEGL", "libGL", "libOpenGL")
+"""Names of the OpenGL libraries (EGL, GLX, glvnd's dispatch): VTK maps them when it makes
+its first render window, not when its OpenGL module is imported."""
+
+
+def gl_loaded(maps: str = "/proc/self/maps") -> bool:
+    """True once this process may hold an OpenGL context: an OpenGL library is mapped
+    (Linux: ``maps`` lists the mapped files), or, where that cannot be read, VTK's OpenGL
+    module is loaded. pyvista's plotting imported with no render window made yet is not
+    (measured: the libraries appear with the first ``Plotter``)."""
+    try:
+        with open(maps) as fh:
+            text = fh.read()
+    except OSError:
+        return _GL in sys.modules
+    return any(line.rsplit("/", 1)[-1].startswith(_GL_LIBS)
+               for line in text.splitlines() if "/" in line)
 
 
 def can_fork() -> bool:
-    """True where a child can be forked safely: POSIX fork, no OpenGL context made yet, and
-    not inside a daemonic process (a Dask or pool worker: those may have no children)."""
-    return ("fork" in multiprocessing.get_all_start_methods() and _GL not in sys.modules
-            and not multiprocessing.current_process().daemon)
+    """True where a child can be forked safely: POSIX fork, no OpenGL context made yet
+    (:func:`gl_loaded`), and not inside a daemonic process (a Dask or pool worker: those
+    may have no children)."""
+    return ("fork" in multiprocessing.get_all_start_methods()
+            and not multiprocessing.current_process().daemon and not gl_loaded())
 
 
 def _child(conn, fn: Callable, args: tuple) -> None:

@@ -48,7 +48,7 @@ from recon3d.score.closest import mesh_distances
 from recon3d.records import Family
 from recon3d.viz import libs
 
-__all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud",
+__all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
            "GroundTruthSamples", "classified_ground_truth", "surface_distances",
            "coverage_mesh", "surface_metrics", "one_after_other", "distances", "scored_part"]
 
@@ -129,16 +129,19 @@ class ContourCloud:
         return cls
 
 
-def _on_holes(srun, points) -> np.ndarray:
+def on_holes(cut, points) -> np.ndarray:
     """(m,) bool: which (m, 2) reference samples of a slice lie nearest a hole loop.
 
+    cut : slicer.Slice -- its ``loops`` and ``holes``.
+
     The nearest loop is the one of the nearest loop segment (one STRtree query for all
-    samples); between loops at the same distance, the first, as an argmin over loops."""
-    holes = np.asarray(srun.slice.holes, dtype=bool)
+    samples); between loops at the same distance, the first, as an argmin over loops.
+    The sensing worker computes it with the slice's samples (``ContourTruth.in_hole``)."""
+    holes = np.asarray(cut.holes, dtype=bool)
     if not holes.any() or not len(points):
         return np.zeros(len(points), dtype=bool)
     segs, owner = [], []
-    for k, lp in enumerate(srun.slice.loops):
+    for k, lp in enumerate(cut.loops):
         ring = np.asarray(lp, dtype=np.float64).reshape(-1, 2)
         ring = np.vstack([ring, ring[:1]])  # closed, as a LinearRing
         segs.append(np.stack([ring[:-1], ring[1:]], axis=1))
@@ -170,7 +173,8 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
                 pts.append(s.slice.to_3d(s.truth.points))
                 reach.append(s.truth.reachable)
                 cov.append(s.truth.covered)
-                hole.append(_on_holes(s, s.truth.points))
+                hole.append(s.truth.in_hole if s.truth.in_hole is not None
+                            else on_holes(s.slice, s.truth.points))
                 fam.append(np.full(len(s.truth.points), k))
     fam = np.concatenate(fam) if fam else np.zeros(0, dtype=np.int64)
     slabs = Domain(np.array(normals).reshape(-1, 3), np.array(lo), np.array(hi))
@@ -288,10 +292,11 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     gt : GroundTruthSamples -- in the evaluation domain.
     cloud : ContourCloud -- reference samples of the slices used.
-    pair : callable(first, second) -> (first(), second()) -- how the two VTK distance
-        calls run (reconstruction -> ground truth, ground truth -> reconstruction): one
-        after the other here, or side by side on two cores (:func:`recon3d.api.execute`
-        passes a forked one); the numbers are the same.
+    pair : callable(first, second) -> (first(), second()) -- how the two halves of the VTK
+        distances run (each half: half the reconstruction's samples -> ground truth, half
+        the ground truth's -> reconstruction): one after the other here, or side by side
+        on two cores (:func:`recon3d.api.execute` passes a forked one); the numbers are
+        the same.
 
     Returns
     -------
@@ -302,16 +307,19 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     taus = {k: s * gt.diagonal for k, s in FSCORE_SHARES.items()}
     scored = scored_part(surface)
     rec = _sample(scored, count, seed) if scored is not None else np.zeros((0, 3))
-    # the ground-truth side is the costly call (points to the reconstruction's many
-    # faces): its points are split between the two calls (a point's distance does not
-    # depend on the others)
+    # both directions split in halves between the two calls (a point's distance does not
+    # depend on the others): which one costs more depends on the meshes (the ground truth
+    # to a finely meshed reconstruction, or samples to a large ground-truth mesh)
+    half_rec = len(rec) // 2
     half = len(gt.points) // 2 if scored is not None else 0
 
     def to_rec(pts):
         return distances(pts, scored) if scored is not None else np.full(len(pts), np.inf)
 
-    (d_rec, d_gt0), d_gt1 = pair(lambda: (distances(rec, gt.mesh), to_rec(gt.points[:half])),
-                                 lambda: to_rec(gt.points[half:]))
+    (d_rec0, d_gt0), (d_rec1, d_gt1) = pair(
+        lambda: (distances(rec[:half_rec], gt.mesh), to_rec(gt.points[:half])),
+        lambda: (distances(rec[half_rec:], gt.mesh), to_rec(gt.points[half:])))
+    d_rec = np.concatenate([d_rec0, d_rec1])
     d_gt = np.concatenate([d_gt0, d_gt1])
     cls = cloud.classify(gt.points)
     reach = (cls == 1) | (cls == 2)

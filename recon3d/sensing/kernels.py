@@ -33,7 +33,7 @@ from numba.core.dispatcher import Dispatcher
 
 from slicer.contact import embree_direct
 
-__all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_kernels"]
+__all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_kernels", "load_numba_target"]
 
 COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 10 s)…"
 """What ``recon3d run`` prints (stderr, not with ``--quiet``) when :func:`cold_kernels`."""
@@ -88,3 +88,14 @@ def cold_kernels() -> list[str]:
         if not ok:
             cold.append(name)
     return cold
+
+
+def load_numba_target() -> None:
+    """Initialise numba's CPU target in this process (its implementation registries: about
+    0.25 s of CPU, paid by the first kernel a process loads from the cache, compiled or not).
+
+    Called before the sensing workers are forked, so that the workers and the run's side
+    processes (the compiled distances of :mod:`recon3d.score.closest`) inherit it instead of
+    each paying it again; nothing is compiled or loaded from the cache here.
+    """
+    numba.core.registry.cpu_target.target_context.refresh()

@@ -43,6 +43,7 @@ import numpy as np
 import trimesh
 
 from recon3d.records import Family, SliceRun
+from recon3d.sensing.kernels import load_numba_target
 from recon3d.sensing.worker import SenseSettings, WorkerState
 
 __all__ = ["sense_all", "WorkerDied", "describe_exit"]
@@ -235,9 +236,20 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
                 progress(out[k])
 
 
+_STOP_SIGNALS = tuple(sig for sig in (signal.SIGINT, signal.SIGTERM,
+                                      getattr(signal, "SIGHUP", None)) if sig is not None)
+"""What stops a run (Ctrl-C, a kill, a closed terminal)."""
+
+
 def _beside(fn: Callable[[], Any]) -> None:
     """``fn()`` in a thread, its error dropped (what it prepares is made again, and fails
-    loudly, where it is used)."""
+    loudly, where it is used).
+
+    The stop signals are blocked in this thread, so the kernel hands them to the main
+    thread: its wait for the workers returns at once and Python raises there (delivered to
+    this thread, the main thread would sleep on until a worker sent a slice back)."""
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
     try:
         fn()
     except Exception:  # noqa: BLE001 - a preparation only
@@ -277,6 +289,7 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
                 progress(out[k])
         return out
     if "fork" in multiprocessing.get_all_start_methods():
+        load_numba_target()  # once here, inherited by every worker (and later side process)
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
         _STATE = WorkerState(settings, families)  # inherited by the forked workers
     else:  # pragma: no cover - no fork on this platform

@@ -26,8 +26,10 @@ import slicer
 from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
 from core2d.truth.reachability import reachable_samples
+from recon3d.io.documents import slice_document
 from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
+from recon3d.score.evaluate import on_holes
 
 __all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics"]
 
@@ -145,10 +147,13 @@ class WorkerState:
         """Sense slice ``index`` of ``family`` and score it against its reference
         (at ``eps`` instead of the run's, tol scaled alike, when given).
 
-        The returned SliceRun has ``slice=None`` (the parent holds the slices) and its rows
-        of ``motions.csv`` (``motion_rows``, made here, beside the other workers)."""
+        The returned SliceRun has ``slice=None`` (the parent holds the slices), its rows
+        of ``motions.csv`` (``motion_rows``) and its entry of ``sensing.json``
+        (``document``), both made here, beside the other workers."""
         srun = self._sense(family, index, eps)
-        srun.motion_rows = slice_rows(srun, self.families[family][index].plane)
+        cut = self.families[family][index]
+        srun.motion_rows = slice_rows(srun, cut.plane)
+        srun.document = slice_document(srun, cut)
         return srun
 
     def _sense(self, family: int, index: int, eps: float | None) -> SliceRun:
@@ -179,5 +184,6 @@ class WorkerState:
                                           spacing=st.spacing, samples=samples))
         samp, reach = samples
         covered = reach & _covered(samp.points, result, st.metric_tol)
-        truth = ContourTruth(samp.points, samp.lengths, reach, covered)
+        truth = ContourTruth(samp.points, samp.lengths, reach, covered,
+                             on_holes(cut, samp.points))
         return SliceRun(None, family, index, result, metrics, workspace, truth)

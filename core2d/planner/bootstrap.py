@@ -16,21 +16,49 @@ import numpy as np
 
 from core2d.planner.areas import Area
 from core2d.planar import unit
-from core2d.planner.regions import Posture, cross, in_V
+from core2d.planner.regions import Posture, in_V
 from core2d.planner.robot import Robot
 
-__all__ = ["bootstrap", "undecided"]
+__all__ = ["bootstrap"]
 
 
 def _probe_from(probe: Robot, angle):
-    """Insert radially from the circle point at ``angle``; (contact, posture)."""
+    """Insert radially from the circle point at ``angle``; (contact, posture),
+    both the mean of :attr:`~core2d.resolution.Resolution.contact_reads`
+    readings at the contact (:func:`_mean_reading`)."""
     start = probe.center + probe.radius * unit(angle)
     probe.approach(start, -unit(angle))
     r = probe.insert(2 * probe.radius)
-    c = r.tip_contact
-    if c is None:
+    if r.tip_contact is None:
         return None
-    return c.point, Posture(r.joint, r.direction)
+    return _mean_reading(probe, r)
+
+
+def _mean_reading(probe: Robot, r):
+    """The tip contact (2,) and the posture of reading ``r``, averaged with
+    ``contact_reads - 1`` readings more where the probe stands (no motion).
+
+    Why: Def. 3's orientation test (:func:`_oriented`) asks on which side of
+    the line A_iB_i the postures' joints lie. Where one insertion reached
+    into a pocket past the other's contact (its line grazes that contact),
+    both joints lie nearly on that line: on ``cup_handle`` z3 the joints'
+    midpoint lies 0.9 eps from a 129 eps lid, 330 eps away, and a noisy
+    reading of A_i or B_i (sigma 0.3 eps, taxels 0.25 eps) turns the line
+    by enough to flip the side one time in three; the flipped area is
+    C_B^A, the whole outside of the cup, and the inner wall is never
+    traced (reachable coverage 0.82). The mean of 9 readings scatters a
+    third as much, and its contact is a better A_i or B_i for the area
+    too. With the paper's perfect sensing one reading is taken, as before."""
+    k = probe.resolution.contact_reads
+    c, joint, t = r.tip_contact.point, r.joint, r.direction
+    if k <= 1:
+        return c, Posture(joint, t)
+    reads = [r] + [probe.sense() for _ in range(k - 1)]
+    reads = [x for x in reads if x.tip_contact is not None]
+    c = np.mean([x.tip_contact.point for x in reads], axis=0)
+    joint = np.mean([x.joint for x in reads], axis=0)
+    t = unit(np.arctan2(*np.sum([x.direction for x in reads], axis=0)[::-1]))
+    return c, Posture(joint, t)
 
 
 def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
@@ -73,48 +101,19 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
     hits = [found[a] for a in angles if found[a] is not None]
     if len(hits) < 2:
         return []
-    jitter = probe.resolution.jitter
     if len(hits) == 2:  # the two sides of the contour: C_A^B and C_B^A
-        first = _oriented(hits[0][0], hits[1][0], hits[0][1], hits[1][1], jitter)
+        first = _oriented(hits[0][0], hits[1][0], hits[0][1], hits[1][1])
         return [first, Area(first.b, first.a, first.pose_b, first.pose_a)]
-    return [_oriented(pa, pb, posa, posb, jitter)
+    return [_oriented(pa, pb, posa, posb)
             for (pa, posa), (pb, posb) in zip(hits, hits[1:] + hits[:1])]
 
 
-def _oriented(pa, pb, posa, posb, jitter=0.0):
+def _oriented(pa, pb, posa, posb):
     """Label the pair so the postures' joints lie in V_i (Def. 3): the probe
     came from the free side, as in Fig. 5(a), (c), (d) where G_i cap V_i = G_i.
     Neighbouring radial insertions can cross inside a pocket, so the angular
-    order alone does not give the order along the contour.
-
-    With a noisy sensor (``jitter`` > 0, :attr:`~core2d.resolution.Resolution.jitter`)
-    the test is read only when it is decided: the joints' midpoint q lies
-    farther from the line A_iB_i than the readings' error can move it
-    (:func:`undecided`). Otherwise -- q on the line, which happens when one
-    insertion grazed the other's contact on its way into a pocket (its joint,
-    that contact and its own lie on one line) -- the clockwise order of the
-    insertions stands (``pa`` first), as it does for every pair that does
-    not cross. With a perfect sensor the test is the paper's, unchanged."""
+    order alone does not give the order along the contour."""
     joints = (posa.joint + posb.joint) / 2
-    if jitter > 0 and undecided(joints, pa, pb, jitter):
-        return Area(pa, pb, posa, posb)
     if in_V(joints, pa, pb) or np.allclose(pa, pb):
         return Area(pa, pb, posa, posb)
     return Area(pb, pa, posb, posa)
-
-
-def undecided(q, a, b, jitter: float) -> bool:
-    """Can readings each off by up to ``jitter`` put ``q`` (2,) on either
-    side of the line through ``a`` and ``b`` (each (2,))? The signed
-    distance of q from the line moves by up to ``jitter`` with q itself and,
-    as the line turns about one end when the other moves by ``jitter``, by
-    ``jitter |q - a| / |ab|`` and ``jitter |q - b| / |ab|`` with the ends.
-    The joints of Def. 3's test lie a probe length away, many times
-    Dist(A_i, B_i), so the margin is many jitters wide."""
-    q, a, b = (np.asarray(x, float) for x in (q, a, b))
-    ab = float(np.hypot(*(b - a)))
-    if ab == 0:
-        return True
-    off = abs(float(cross(b - a, q - a))) / ab
-    margin = jitter * (1.0 + (float(np.hypot(*(q - a))) + float(np.hypot(*(q - b)))) / ab)
-    return off <= margin

@@ -15,50 +15,34 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.areas import Area
-from core2d.planar import unit
-from core2d.planner.regions import Posture, in_V
+from core2d.planar import magnitude, unit
+from core2d.planner.regions import Posture, cross, in_V
 from core2d.planner.robot import Robot
 
-__all__ = ["bootstrap"]
+__all__ = ["bootstrap", "undecided"]
+
+#: standard deviations of its error beyond which Def. 3's test is read from
+#: one reading (a flip then has probability below 0.0014)
+DECIDED = 3.0
 
 
-def _probe_from(probe: Robot, angle):
+def _probe_from(probe: Robot, angle, reads: int = 1):
     """Insert radially from the circle point at ``angle``; (contact, posture),
-    both the mean of :attr:`~core2d.resolution.Resolution.contact_reads`
-    readings at the contact (:func:`_mean_reading`)."""
+    each the mean of ``reads`` readings where the probe stopped (the first
+    the insertion's own, the others :meth:`Robot.sense`: no motion)."""
     start = probe.center + probe.radius * unit(angle)
     probe.approach(start, -unit(angle))
     r = probe.insert(2 * probe.radius)
-    if r.tip_contact is None:
+    c = r.tip_contact
+    if c is None:
         return None
-    return _mean_reading(probe, r)
-
-
-def _mean_reading(probe: Robot, r):
-    """The tip contact (2,) and the posture of reading ``r``, averaged with
-    ``contact_reads - 1`` readings more where the probe stands (no motion).
-
-    Why: Def. 3's orientation test (:func:`_oriented`) asks on which side of
-    the line A_iB_i the postures' joints lie. Where one insertion reached
-    into a pocket past the other's contact (its line grazes that contact),
-    both joints lie nearly on that line: on ``cup_handle`` z3 the joints'
-    midpoint lies 0.9 eps from a 129 eps lid, 330 eps away, and a noisy
-    reading of A_i or B_i (sigma 0.3 eps, taxels 0.25 eps) turns the line
-    by enough to flip the side one time in three; the flipped area is
-    C_B^A, the whole outside of the cup, and the inner wall is never
-    traced (reachable coverage 0.82). The mean of 9 readings scatters a
-    third as much, and its contact is a better A_i or B_i for the area
-    too. With the paper's perfect sensing one reading is taken, as before."""
-    k = probe.resolution.contact_reads
-    c, joint, t = r.tip_contact.point, r.joint, r.direction
-    if k <= 1:
-        return c, Posture(joint, t)
-    reads = [r] + [probe.sense() for _ in range(k - 1)]
-    reads = [x for x in reads if x.tip_contact is not None]
-    c = np.mean([x.tip_contact.point for x in reads], axis=0)
-    joint = np.mean([x.joint for x in reads], axis=0)
-    t = unit(np.arctan2(*np.sum([x.direction for x in reads], axis=0)[::-1]))
-    return c, Posture(joint, t)
+    if reads <= 1:
+        return c.point, Posture(r.joint, r.direction)
+    got = [r] + [probe.sense() for _ in range(reads - 1)]
+    got = [x for x in got if x.tip_contact is not None]
+    t = np.sum([x.direction for x in got], axis=0)
+    return (np.mean([x.tip_contact.point for x in got], axis=0),
+            Posture(np.mean([x.joint for x in got], axis=0), t / magnitude(t)))
 
 
 def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
@@ -98,7 +82,10 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
         for a in extra:
             found[a] = _probe_from(probe, a)
         angles = sorted(angles + extra, reverse=True)
-    hits = [found[a] for a in angles if found[a] is not None]
+    kept = [a for a in angles if found[a] is not None]
+    if probe.resolution.jitter > 0:
+        _reread_undecided(probe, kept, found)
+    hits = [found[a] for a in kept]
     if len(hits) < 2:
         return []
     if len(hits) == 2:  # the two sides of the contour: C_A^B and C_B^A
@@ -117,3 +104,54 @@ def _oriented(pa, pb, posa, posb):
     if in_V(joints, pa, pb) or np.allclose(pa, pb):
         return Area(pa, pb, posa, posb)
     return Area(pb, pa, posb, posa)
+
+
+def undecided(q, a, b, res) -> bool:
+    """Can one noisy reading of each of A_i, B_i (``a``, ``b``, (2,)) and of
+    the joints put their midpoint ``q`` (2,) on either side of the line
+    A_iB_i? True when q lies within :data:`DECIDED` standard deviations of
+    its offset's error from the line, the error stated by the sensor's data
+    sheet (``res``: :class:`~core2d.resolution.Resolution`): a contact reading
+    scatters by s_c = sqrt(3 sigma^2 + T^2 / 12) per axis (its own noise, the
+    joint's, the direction's at the tip; the taxel along the probe), the
+    joints' midpoint by sigma / sqrt(2); and the line turns about one end
+    when the other moves, so the ends' scatter reaches q multiplied by
+    |q - a| / |ab| and |q - b| / |ab|."""
+    q, a, b = (np.asarray(x, float) for x in (q, a, b))
+    ab = magnitude(b - a)
+    s_c2 = 3.0 * res.noise ** 2 + res.taxel ** 2 / 12.0
+    sd = np.sqrt(res.noise ** 2 / 2.0
+                 + s_c2 * (magnitude(q - a) ** 2 + magnitude(q - b) ** 2) / ab ** 2)
+    return abs(float(cross(b - a, q - a))) / ab <= DECIDED * sd
+
+
+def _reread_undecided(probe: Robot, angles, found):
+    """Insert again, reading :attr:`~core2d.resolution.Resolution.contact_reads`
+    times, from the two ``angles`` of every neighbouring pair whose Def. 3
+    test (:func:`_oriented`) one noisy reading cannot decide
+    (:func:`undecided`), and replace their ``found`` (contact, posture) by
+    the means. Pairs closer than ``w2_dist`` are W2 whichever way they run.
+
+    Why: where one insertion reached into a pocket past the other's contact
+    (its line grazes that contact), both joints lie nearly on the line A_iB_i:
+    on ``cup_handle`` z3 their midpoint lies 0.9 eps from a 129 eps lid,
+    330 eps away, and one reading of A_i or B_i (sigma 0.3 eps, taxels
+    0.25 eps) turns the line enough to flip the side in 25 of 40 seeds. The
+    flipped area is C_B^A, the outside of the cup; the inner wall belongs
+    to no area and is never traced (reachable coverage 0.82). The mean of
+    25 readings scatters a fifth as much. Only such pairs are read again
+    (two motions per insertion), so a slice whose bootstrap pairs are all
+    decided is sensed as before. Called only with a noisy sensor."""
+    res = probe.resolution
+    n = len(angles)
+    again = set()
+    for k in range(n if n > 2 else n - 1):
+        a, b = angles[k], angles[(k + 1) % n]
+        (pa, posa), (pb, posb) = found[a], found[b]
+        if magnitude(pb - pa) >= res.w2_dist and undecided(
+                (posa.joint + posb.joint) / 2, pa, pb, res):
+            again.update((a, b))
+    for a in sorted(again, reverse=True):
+        got = _probe_from(probe, a, res.contact_reads)
+        if got is not None:
+            found[a] = got

@@ -83,30 +83,34 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
             found[a] = _probe_from(probe, a)
         angles = sorted(angles + extra, reverse=True)
     kept = [a for a in angles if found[a] is not None]
+    keep = set()  # pairs whose Def. 3 test the sensor cannot decide: clockwise
     if probe.resolution.jitter > 0:
-        _reread_undecided(probe, kept, found)
+        keep = _reread_undecided(probe, kept, found)
     hits = [found[a] for a in kept]
     if len(hits) < 2:
         return []
     if len(hits) == 2:  # the two sides of the contour: C_A^B and C_B^A
-        first = _oriented(hits[0][0], hits[1][0], hits[0][1], hits[1][1])
+        first = _oriented(hits[0][0], hits[1][0], hits[0][1], hits[1][1], 0 in keep)
         return [first, Area(first.b, first.a, first.pose_b, first.pose_a)]
-    return [_oriented(pa, pb, posa, posb)
-            for (pa, posa), (pb, posb) in zip(hits, hits[1:] + hits[:1])]
+    return [_oriented(pa, pb, posa, posb, k in keep)
+            for k, ((pa, posa), (pb, posb)) in enumerate(zip(hits, hits[1:] + hits[:1]))]
 
 
-def _oriented(pa, pb, posa, posb):
+def _oriented(pa, pb, posa, posb, clockwise=False):
     """Label the pair so the postures' joints lie in V_i (Def. 3): the probe
     came from the free side, as in Fig. 5(a), (c), (d) where G_i cap V_i = G_i.
     Neighbouring radial insertions can cross inside a pocket, so the angular
-    order alone does not give the order along the contour."""
+    order alone does not give the order along the contour. ``clockwise``:
+    the test is not read (a noisy sensor cannot decide it even from averaged
+    readings, :func:`_reread_undecided`) and the pair keeps the clockwise
+    order of its insertions, ``pa`` first."""
     joints = (posa.joint + posb.joint) / 2
-    if in_V(joints, pa, pb) or np.allclose(pa, pb):
+    if clockwise or in_V(joints, pa, pb) or np.allclose(pa, pb):
         return Area(pa, pb, posa, posb)
     return Area(pb, pa, posb, posa)
 
 
-def undecided(q, a, b, res) -> bool:
+def undecided(q, a, b, res, reads: int = 1) -> bool:
     """Can one noisy reading of each of A_i, B_i (``a``, ``b``, (2,)) and of
     the joints put their midpoint ``q`` (2,) on either side of the line
     A_iB_i? True when q lies within :data:`DECIDED` standard deviations of
@@ -116,16 +120,17 @@ def undecided(q, a, b, res) -> bool:
     joint's, the direction's at the tip; the taxel along the probe), the
     joints' midpoint by sigma / sqrt(2); and the line turns about one end
     when the other moves, so the ends' scatter reaches q multiplied by
-    |q - a| / |ab| and |q - b| / |ab|."""
+    |q - a| / |ab| and |q - b| / |ab|. ``reads``: each reading the mean of
+    that many (the error falls by its square root)."""
     q, a, b = (np.asarray(x, float) for x in (q, a, b))
     ab = magnitude(b - a)
     s_c2 = 3.0 * res.noise ** 2 + res.taxel ** 2 / 12.0
-    sd = np.sqrt(res.noise ** 2 / 2.0
-                 + s_c2 * (magnitude(q - a) ** 2 + magnitude(q - b) ** 2) / ab ** 2)
+    sd = np.sqrt((res.noise ** 2 / 2.0
+                  + s_c2 * (magnitude(q - a) ** 2 + magnitude(q - b) ** 2) / ab ** 2) / reads)
     return abs(float(cross(b - a, q - a))) / ab <= DECIDED * sd
 
 
-def _reread_undecided(probe: Robot, angles, found):
+def _reread_undecided(probe: Robot, angles, found) -> set:
     """Insert again, reading :attr:`~core2d.resolution.Resolution.contact_reads`
     times, from the two ``angles`` of every neighbouring pair whose Def. 3
     test (:func:`_oriented`) one noisy reading cannot decide
@@ -141,7 +146,17 @@ def _reread_undecided(probe: Robot, angles, found):
     to no area and is never traced (reachable coverage 0.82). The mean of
     25 readings scatters a fifth as much. Only such pairs are read again
     (two motions per insertion), so a slice whose bootstrap pairs are all
-    decided is sensed as before. Called only with a noisy sensor."""
+    decided is sensed as before. Called only with a noisy sensor.
+
+    Returns the indices k of the pairs (angles[k], angles[k + 1]) that even
+    the means cannot decide: both joints on the line A_iB_i within the
+    error, where one insertion ran through the other's contact and through
+    the workspace centre it aims at (``OVERHANG_LEFT`` of the figure blocks:
+    0.5 eps off a 54 eps lid, 0.1 standard deviations of one reading's
+    error). Those keep the clockwise order of their insertions -- the order
+    along the contour of every pair that does not cross, and the right one
+    on those measured (``cup_handle`` z3, ``OVERHANG_LEFT`` and
+    ``OVERHANG_RIGHT``), where the test itself is a coin toss."""
     res = probe.resolution
     n = len(angles)
     again = set()
@@ -155,3 +170,12 @@ def _reread_undecided(probe: Robot, angles, found):
         got = _probe_from(probe, a, res.contact_reads)
         if got is not None:
             found[a] = got
+    keep = set()
+    for k in range(n if n > 2 else n - 1):
+        a, b = angles[k], angles[(k + 1) % n]
+        if a in again and b in again:
+            (pa, posa), (pb, posb) = found[a], found[b]
+            if magnitude(pb - pa) >= res.w2_dist and undecided(
+                    (posa.joint + posb.joint) / 2, pa, pb, res, res.contact_reads):
+                keep.add(k)
+    return keep

@@ -62,7 +62,8 @@ class Resolution:
         """How many readings the planner averages where a contact's position
         decides a test and re-reading is free (the probe stays put, no
         motion): 1 with the paper's perfect contact sensing, else 25 -- the
-        mean of 25 readings scatters a fifth as much (:func:`core2d.planner.bootstrap.undecided`)."""
+        mean of 25 readings scatters a fifth as much
+        (:func:`core2d.planner.bootstrap.undecided`)."""
         return 1 if self.noise == 0 and self.taxel == 0 else 25
 
     @property

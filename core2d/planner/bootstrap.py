@@ -121,12 +121,13 @@ def undecided(q, a, b, res, reads: int = 1) -> bool:
     joints' midpoint by sigma / sqrt(2); and the line turns about one end
     when the other moves, so the ends' scatter reaches q multiplied by
     |q - a| / |ab| and |q - b| / |ab|. ``reads``: each reading the mean of
-    that many (the error falls by its square root)."""
+    that many (the noise falls by its square root; the taxel's rounding,
+    the same at every reading of one posture, does not)."""
     q, a, b = (np.asarray(x, float) for x in (q, a, b))
     ab = magnitude(b - a)
-    s_c2 = 3.0 * res.noise ** 2 + res.taxel ** 2 / 12.0
-    sd = np.sqrt((res.noise ** 2 / 2.0
-                  + s_c2 * (magnitude(q - a) ** 2 + magnitude(q - b) ** 2) / ab ** 2) / reads)
+    s_c2 = 3.0 * res.noise ** 2 / reads + res.taxel ** 2 / 12.0
+    sd = np.sqrt(res.noise ** 2 / (2.0 * reads)
+                 + s_c2 * (magnitude(q - a) ** 2 + magnitude(q - b) ** 2) / ab ** 2)
     return abs(float(cross(b - a, q - a))) / ab <= DECIDED * sd
 
 

@@ -1,8 +1,15 @@
 """The first compile is announced: ``recon3d run`` prints the compile notice on stderr when
 numba's cache misses (an empty ``NUMBA_CACHE_DIR``: the sensing kernels compile in this
 run) and not when the same cache is hit on the next run. Both runs are real processes;
-the notice is printed before the compile starts (``recon3d.sensing.cold_kernels``)."""
+the notice is printed before the compile starts (``recon3d.sensing.cold_kernels``).
+
+With two workers, every kernel is compiled once: the parent senses the first slice (and
+compiles) before the workers fork, a child compiles the distance kernels meanwhile, and
+numba's cache log (``NUMBA_DEBUG_CACHE``: one "data saved" line per compile, whichever
+process compiles) shows each kernel saved once."""
+import collections
 import os
+import re
 import subprocess
 import sys
 
@@ -14,19 +21,24 @@ from slicer.contact.embree_direct import available
 pytestmark = pytest.mark.skipif(not available(), reason="no Embree 4 library to call directly")
 
 
-def _run(cache, out):
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+def _run(cache, out, jobs):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), NUMBA_DEBUG_CACHE="1")
     proc = subprocess.run([sys.executable, "-m", "recon3d", "run", "fig17_pocket", "--slices",
-                           "2", "--jobs", "1", "--no-png", "--out", str(out)], env=env,
+                           "3", "--jobs", str(jobs), "--no-png", "--out", str(out)], env=env,
                           capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
-    return proc.stderr
+    saved = collections.Counter(re.findall(r"data saved to '.*?([^/]+)\.nbc'", proc.stdout))
+    return proc.stderr, saved
 
 
 def test_the_notice_appears_on_a_cache_miss_and_not_on_a_hit(tmp_path):
     cache = tmp_path / "numba"
-    cold = _run(cache, tmp_path / "a")
+    cold, saved = _run(cache, tmp_path / "a", jobs=2)
     assert list(cache.rglob("*.nbc"))  # this run compiled into the empty cache
     assert cold.count(COMPILE_NOTICE) == 1
-    warm = _run(cache, tmp_path / "b")
+    kernels = {name.split("-")[0] for name in saved}
+    assert {"kernels.search", "embree_direct._ray", "closest._query"} <= kernels
+    assert max(saved.values()) == 1, saved  # no kernel compiled by two workers
+    warm, saved = _run(cache, tmp_path / "b", jobs=2)
     assert COMPILE_NOTICE not in warm
+    assert not saved

@@ -42,8 +42,10 @@ from multiprocessing.connection import wait
 import numpy as np
 import trimesh
 
+from recon3d.io.side import Side, can_fork
 from recon3d.records import Family, SliceRun
-from recon3d.sensing.kernels import load_numba_target
+from recon3d.score.closest import compile_kernels as compile_distances
+from recon3d.sensing.kernels import cold_kernels, load_numba_target
 from recon3d.sensing.worker import SenseSettings, WorkerState
 
 __all__ = ["sense_all", "WorkerDied", "describe_exit"]
@@ -203,10 +205,10 @@ def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left:
 
 
 def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list,
-              progress) -> None:
-    """Hand out the tasks one at a time per worker; collect the results into ``out``."""
-    todo = iter(range(len(tasks)))
-    left = len(tasks)
+              progress, start: int = 0) -> None:
+    """Hand out ``tasks[start:]`` one at a time per worker; collect the results into ``out``."""
+    todo = iter(range(start, len(tasks)))
+    left = len(tasks) - start
     for w in range(len(workers.procs)):
         k = next(todo, None)
         if k is not None:
@@ -279,17 +281,17 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
     WorkerDied -- a worker process died; the other workers are stopped first.
     """
     global _STATE
-    jobs = max(1, min(int(jobs), len(tasks)))
     out: list = [None] * len(tasks)
-    if jobs == 1:
-        state = WorkerState(settings, _own_contacts(families))
-        for k, task in enumerate(tasks):
-            out[k] = state.sense(*task)
-            if progress is not None:
-                progress(out[k])
-        return out
-    if "fork" in multiprocessing.get_all_start_methods():
+    fork = "fork" in multiprocessing.get_all_start_methods()
+    first = 0
+    if fork and min(int(jobs), len(tasks)) > 1:
         load_numba_target()  # once here, inherited by every worker (and later side process)
+        first = _compile_here(families, settings, tasks, out, progress)
+    jobs = max(1, min(int(jobs), len(tasks) - first))
+    if jobs == 1:
+        _sense_here(settings, families, tasks, out, progress, start=first)
+        return out
+    if fork:
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
         _STATE = WorkerState(settings, families)  # inherited by the forked workers
     else:  # pragma: no cover - no fork on this platform
@@ -303,7 +305,7 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
             thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
                                       name="recon3d-beside")
             thread.start()
-        _run_pool(workers, tasks, settings, out, progress)
+        _run_pool(workers, tasks, settings, out, progress, start=first)
         done = True
     finally:
         _STATE = None
@@ -311,3 +313,45 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
         if thread is not None:
             thread.join()
     return out
+
+
+def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,
+                progress, start: int = 0) -> None:
+    """Sense ``tasks[start:]`` in this process into ``out`` (contact caches of its own)."""
+    state = WorkerState(settings, _own_contacts(families))
+    for k in range(start, len(tasks)):
+        out[k] = state.sense(*tasks[k])
+        if progress is not None:
+            progress(out[k])
+
+
+def _compile_here(families: list, settings: SenseSettings, tasks: list, out: list,
+                  progress) -> int:
+    """When the Embree kernels are not in numba's cache, sense the first task here (which
+    compiles them, once) before any worker is forked; how many tasks that sensed (0 or 1).
+
+    Forked workers inherit the compiled kernels. Without this, every worker compiles the
+    same kernels at the same time (the compile paid twice in CPU, on cores that the machine
+    may not have free). A child forked meanwhile compiles the point-to-mesh distances that
+    the coloured ground truth uses after the sensing, on the core this process leaves idle.
+    :func:`cold_kernels` reads numba's cache indexes only; other backends compile a subset
+    of the kernels and are not asked about.
+    """
+    if settings.backend != "embree" or len(tasks) < 2 or not cold_kernels():
+        return 0
+    # the other core compiles the distances of the coloured ground truth meanwhile
+    side = Side(compile_distances) if can_fork() else None
+    try:
+        _sense_here(settings, families, tasks[:1], out, progress)
+    finally:
+        if side is not None:
+            _finish(side)
+    return 1
+
+
+def _finish(side: Side) -> None:
+    """Wait for the distance kernels' compile (its failure is the later call's to report)."""
+    try:
+        side.result()
+    except RuntimeError:
+        pass

@@ -11,7 +11,8 @@ import pytest
 import trimesh
 
 from recon3d.api import _side_by_side
-from recon3d.score.closest import mesh_distances
+from recon3d.score import closest
+from recon3d.score.closest import compile_kernels, mesh_distances
 from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, distances,
                                     one_after_other, surface_metrics)
 
@@ -37,6 +38,21 @@ def test_mesh_distances_equal_vtk(k):
     assert ours.shape == (len(pts),)
     np.testing.assert_allclose(ours, vtk, rtol=1e-9, atol=1e-12)
     assert np.all(ours[-on:] <= 1e-12)
+
+
+def test_compile_kernels_compiles_what_a_run_calls():
+    """The first run compiles the distances beside the sensing (``compile_kernels``): every
+    call a run makes, whatever the dtypes and memory order of its arrays, uses those
+    signatures and compiles nothing more."""
+    compile_kernels()
+    kernels = (closest._query, closest._build, closest._tri_dist2, closest._box_dist2)
+    compiled = [list(k.signatures) for k in kernels]
+    assert all(compiled)
+    mesh = trimesh.creation.icosphere(subdivisions=2)
+    mesh_distances(np.asfortranarray(mesh.sample(100, seed=1)), mesh.vertices, mesh.faces)
+    mesh_distances(mesh.vertices[::2].astype(np.float32),
+                   mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32))
+    assert [list(k.signatures) for k in kernels] == compiled
 
 
 def test_mesh_distances_hierarchy_prunes_nothing_it_needs():

@@ -1,8 +1,10 @@
 """The scores' fast paths give the numbers of the slow ones.
 
-* :func:`recon3d.score.closest.mesh_distances` (the coloured ground truth's distances)
-  equals VTK's exact distances up to rounding, near a surface, far from it and inside it.
-* The VTK distance calls of :func:`recon3d.score.evaluate.surface_metrics` run side by
+* :func:`recon3d.score.closest.mesh_distances` (the distances of the 3D scores and of the
+  coloured ground truth) equals VTK's exact distances (``vtkImplicitPolyDataDistance``)
+  up to rounding, near a surface, far from it and inside it, and the scores computed with
+  either give the same F-scores.
+* The distance calls of :func:`recon3d.score.evaluate.surface_metrics` run side by
   side (both directions' points split between two calls, one in a forked child) give the
   very metrics of one call after the other.
 """
@@ -13,8 +15,17 @@ import trimesh
 from recon3d.api import _side_by_side
 from recon3d.score import closest
 from recon3d.score.closest import compile_kernels, mesh_distances
-from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, distances,
-                                    one_after_other, surface_metrics)
+from recon3d.score import evaluate
+from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, one_after_other,
+                                    surface_metrics)
+from recon3d.viz import libs
+
+
+def vtk_distances(points, mesh):
+    """(n,) float: VTK's exact distances (``vtkImplicitPolyDataDistance``), the reference."""
+    cloud = libs.pyvista().PolyData(np.asarray(points, dtype=np.float64))
+    res = cloud.compute_implicit_distance(libs.polydata(mesh))
+    return np.abs(np.asarray(res["implicit_distance"], dtype=np.float64))
 
 
 def _meshes():
@@ -34,7 +45,7 @@ def test_mesh_distances_equal_vtk(k):
                      mesh.vertices[:50]])                    # on the surface
     on = min(50, len(mesh.vertices))
     ours = mesh_distances(pts, mesh.vertices, mesh.faces)
-    vtk = distances(pts, mesh)
+    vtk = vtk_distances(pts, mesh)
     assert ours.shape == (len(pts),)
     np.testing.assert_allclose(ours, vtk, rtol=1e-9, atol=1e-12)
     assert np.all(ours[-on:] <= 1e-12)
@@ -61,7 +72,7 @@ def test_mesh_distances_hierarchy_prunes_nothing_it_needs():
     c = mesh.triangles_center
     far = c / np.linalg.norm(c, axis=1, keepdims=True) * 1.5
     ours = mesh_distances(far, mesh.vertices, mesh.faces)
-    np.testing.assert_allclose(ours, distances(far, mesh), rtol=1e-9)
+    np.testing.assert_allclose(ours, vtk_distances(far, mesh), rtol=1e-9)
 
 
 def test_mesh_distances_refuses_an_empty_mesh():
@@ -79,6 +90,19 @@ def _case():
     pts = np.column_stack([10 * np.cos(t), 10 * np.sin(t), np.zeros_like(t)])
     cloud = ContourCloud(pts, t < 4.0, t < 2.0, np.zeros(len(t), int), dom)
     return rec, gt, cloud
+
+
+def test_scores_with_compiled_distances_equal_vtk_scores(monkeypatch):
+    """``metrics.json``'s distances are the compiled ones; with VTK's the scores agree to
+    rounding and every F-score is the same number."""
+    rec, gt, cloud = _case()
+    ours = surface_metrics(rec, gt, cloud, count=6000)
+    monkeypatch.setattr(evaluate, "distances", vtk_distances)
+    vtk = surface_metrics(rec, gt, cloud, count=6000)
+    for got, want in ((ours[0], vtk[0]), (ours[0]["reachable"], vtk[0]["reachable"])):
+        assert got["fscore"] == want["fscore"]
+        for key in ("accuracy", "completeness", "chamfer_l1", "hausdorff", "hd95"):
+            assert got[key] == pytest.approx(want[key], rel=1e-12)
 
 
 def test_side_by_side_metrics_equal_serial():

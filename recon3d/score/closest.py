@@ -1,11 +1,12 @@
 """Exact point-to-mesh distances, compiled: a bounding-box hierarchy of the triangles.
 
-The coloured ground truth of ``scene.vtm`` / ``coverage.png`` gives every vertex of the
-subdivided ground truth (10^5 - 10^6 of them) its distance to the scored surface. VTK's
-``vtkImplicitPolyDataDistance`` takes ~50 us a point there; this kernel takes ~1 us and
-returns the same exact distance (closest point on each candidate triangle, Ericson,
-*Real-Time Collision Detection* §5.1.5) up to rounding (the last bits may differ from
-VTK's, so the 3D scores of ``metrics.json`` keep VTK's numbers: :func:`recon3d.score.evaluate.distances`).
+The 3D scores (:func:`recon3d.score.evaluate.distances`) and the coloured ground truth of
+``scene.vtm`` / ``coverage.png`` (every vertex of the subdivided ground truth, 10^5 - 10^6 of
+them) take their distances from here. VTK's ``vtkImplicitPolyDataDistance`` takes ~50 us a
+point there; this kernel takes ~1 us and returns the same exact distance (closest point on
+each candidate triangle, Ericson, *Real-Time Collision Detection* §5.1.5) up to rounding
+(tested against VTK to ``rtol 1e-9``; on the scores of nine runs the largest relative
+difference was 4.6e-14, no F-score moved).
 
 How: a hierarchy of axis-aligned boxes (median splits, four triangles a leaf); a point
 walks it nearest box first and skips every box no nearer than its best triangle so far.

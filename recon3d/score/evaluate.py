@@ -1,7 +1,8 @@
 """3D metrics of the reconstructed surface against the ground-truth mesh.
 
-Definitions (all distances are exact point-to-triangle distances, VTK's
-``vtkImplicitPolyDataDistance``, from fixed-count seeded area-uniform samples):
+Definitions (all distances are exact point-to-triangle distances, compiled in
+:mod:`recon3d.score.closest` and equal to VTK's ``vtkImplicitPolyDataDistance`` up to
+rounding, from fixed-count seeded area-uniform samples):
 
 * **domain** -- the slab between the first and last slice of a family (the
   union of the slabs when there are several). Ground truth outside it is
@@ -46,7 +47,6 @@ from scipy.spatial import cKDTree
 from recon3d.config import diagonal
 from recon3d.score.closest import mesh_distances
 from recon3d.records import Family
-from recon3d.viz import libs
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
            "GroundTruthSamples", "classified_ground_truth", "surface_distances",
@@ -183,13 +183,13 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
 
 
 def distances(points, mesh: trimesh.Trimesh) -> np.ndarray:
-    """(n,) float: exact distance from (n, 3) points to a triangle mesh (VTK)."""
+    """(n,) float: exact distance from (n, 3) points to a triangle mesh (compiled:
+    :func:`recon3d.score.closest.mesh_distances`)."""
     if len(points) == 0:
         return np.zeros(0)
-    pv = libs.pyvista()  # vtkImplicitPolyDataDistance
-    cloud = pv.PolyData(np.asarray(points, dtype=np.float64))
-    res = cloud.compute_implicit_distance(libs.polydata(mesh))
-    return np.abs(np.asarray(res["implicit_distance"], dtype=np.float64))
+    if len(mesh.faces) == 0:
+        return np.full(len(points), np.inf)
+    return mesh_distances(points, mesh.vertices, mesh.faces)
 
 
 def _sample(mesh, count: int, seed: int) -> np.ndarray:
@@ -292,7 +292,7 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     surface : trimesh.Trimesh with ``face_attributes['label']``.
     gt : GroundTruthSamples -- in the evaluation domain.
     cloud : ContourCloud -- reference samples of the slices used.
-    pair : callable(first, second) -> (first(), second()) -- how the two halves of the VTK
+    pair : callable(first, second) -> (first(), second()) -- how the two halves of the
         distances run (each half: half the reconstruction's samples -> ground truth, half
         the ground truth's -> reconstruction): one after the other here, or side by side
         on two cores (:func:`recon3d.api.execute` passes a forked one); the numbers are

@@ -19,26 +19,16 @@ from core2d import SensorModel, sense_slice
 from core2d.planner.tracing import reread_jump
 from core2d.sim.probe import Probe
 from core2d.truth.metrics import sensor_metrics
+from outlines import slotted_block
 from slicer.contact.exact import ExactContact
 
 SLOTS = (0.55, 0.65, 0.75, 0.85)
 NOISE = 0.1
 
 
-def _slotted(tooth=6.0, depth=12.0, base=10.0):
-    """Counter-clockwise outline of a block with slots ``SLOTS`` wide (eps 1)
-    and ``depth`` deep in its top, and the workspace circle around it."""
-    width = tooth * (len(SLOTS) + 1) + sum(SLOTS)
-    top = base + depth
-    pts = [(0.0, 0.0), (width, 0.0), (width, top)]
-    x = width - tooth
-    for s in SLOTS[::-1]:
-        pts += [(x, top), (x, base), (x - s, base), (x - s, top)]
-        x -= s + tooth
-    pts.append((0.0, top))
-    loops = [np.array(pts, float)]
-    lo, hi = loops[0].min(0), loops[0].max(0)
-    return loops, ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
+def _slotted():
+    """A block with slots ``SLOTS`` wide, 12 deep (eps 1), and its workspace."""
+    return slotted_block(SLOTS, tooth=6.0, depth=12.0, base=10.0)
 
 
 def test_slots_narrower_than_eps_at_sigma_01_eps():

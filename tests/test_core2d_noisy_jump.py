@@ -71,7 +71,13 @@ def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact():
     assert np.mean(mean) < 0.4 * np.mean(one), (np.mean(mean), np.mean(one))
 
 
-def test_reread_jump_keeps_a_perfect_reading():
-    probe, r = _touching(None)
-    p2, pose = reread_jump(probe, r)
-    assert p2 is r.contacts[0].point and np.array_equal(pose.joint, r.joint)
+def test_reread_jump_keeps_a_perfect_or_a_coarse_reading():
+    """A perfect sensor, and one whose readings of one point do not resolve
+    eps/2 (sigma 0.3 eps, taxels 0.25 eps): the jump's own reading, no re-read."""
+    for sensor in (None, SensorModel.of_eps(1.0, 0.3, 0.25, 0)):
+        probe, r = _touching(sensor)
+        state = None if sensor is None else probe.sensor.rng.bit_generator.state
+        p2, pose = reread_jump(probe, r)
+        assert p2 is r.contacts[0].point and np.array_equal(pose.joint, r.joint)
+        if sensor is not None:  # no reading drawn
+            assert probe.sensor.rng.bit_generator.state == state

@@ -69,8 +69,20 @@ def reread_jump(probe: Robot, r):
     with a noisy contact sensor the means of
     :attr:`~core2d.resolution.Resolution.contact_reads` readings where the
     probe stopped (the jump's own and :meth:`Robot.sense`, no motion), else
-    the one reading. Returns ``((2,) P_2nd, Posture)``.
+    the one reading.
 
+    Parameters
+    ----------
+    probe : Robot -- standing where the trace stopped on the jump.
+    r : Reading -- the trace's reading, event ``"jump"``, P_2nd first in
+        ``r.contacts``.
+
+    Returns
+    -------
+    ((2,) float P_2nd, Posture)
+
+    Notes
+    -----
     Why: (P_1st, P_2nd) is the mouth of the gap the contact jumped over,
     and Case 2-1 registers it as an area: W2 at once when Dist < eps (§3.1,
     the chord standing for C_{P_1st}^{P_2nd}, the gap behind it). One
@@ -103,13 +115,13 @@ def reread_jump(probe: Robot, r):
     pts, joints, dirs = [c.point], [r.joint], [r.direction]
     for _ in range(k - 1):
         x = probe.sense()
-        t = x.tip_contact
-        if t is not None and np.hypot(*(t.point - c.point)) <= same:
-            pts.append(t.point)
+        tip = x.tip_contact
+        if tip is not None and np.hypot(*(tip.point - c.point)) <= same:
+            pts.append(tip.point)
             joints.append(x.joint)
             dirs.append(x.direction)
-    t = np.sum(dirs, axis=0)
-    return np.mean(pts, axis=0), Posture(np.mean(joints, axis=0), t / np.hypot(*t))
+    d = np.sum(dirs, axis=0)
+    return np.mean(pts, axis=0), Posture(np.mean(joints, axis=0), d / np.hypot(*d))
 
 
 def _on_probe(point, probe: Robot) -> bool:

@@ -17,6 +17,9 @@ units of ``eps`` so that pockets 0.5 - 2 eps wide occur on purpose.
 * ``numerics`` -- near-collinear runs, tiny edges, a large coordinate
   offset, sliver spikes one eps wide at their base.
 
+:func:`slotted_block` is a fixed shape (no generator): a block with straight
+slots of given widths in its top.
+
 Examples
 --------
 >>> rng = np.random.default_rng(1)
@@ -36,7 +39,8 @@ try:
 except ImportError:  # tests/ imported as a package
     from tests.polygen import loops_from_shapely
 
-__all__ = ["KINDS", "outline", "star", "comb", "undercut", "islands", "holes", "numerics"]
+__all__ = ["KINDS", "outline", "star", "comb", "undercut", "islands", "holes", "numerics",
+           "slotted_block"]
 
 KINDS = ("star", "comb", "undercut", "islands", "holes", "numerics")
 
@@ -183,3 +187,21 @@ def outline(kind: str, rng, eps: float = 1.0) -> list[np.ndarray]:
         except ValueError:
             continue
     raise RuntimeError(f"could not draw a {kind} outline")
+
+
+def slotted_block(slots, tooth: float, depth: float, base: float):
+    """Counter-clockwise outline of a block with straight slots ``slots``
+    wide (left to right) and ``depth`` deep in its top, teeth ``tooth`` wide
+    between them and ``base`` of solid below; and the workspace circle
+    around it. Returns ``(loops, (centre (2,), radius))``."""
+    width = tooth * (len(slots) + 1) + sum(slots)
+    top = base + depth
+    pts = [(0.0, 0.0), (width, 0.0), (width, top)]
+    x = width - tooth
+    for s in slots[::-1]:
+        pts += [(x, top), (x, base), (x - s, base), (x - s, top)]
+        x -= s + tooth
+    pts.append((0.0, top))
+    loops = [np.array(pts, float)]
+    lo, hi = loops[0].min(0), loops[0].max(0)
+    return loops, ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))

@@ -16,6 +16,7 @@ from core2d import SensorModel, sense_slice
 from core2d.planner.grazing import Blockers, beyond_ends, resolves_half_eps, steep_enough
 from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
+from outlines import slotted_block
 from slicer.contact.exact import ExactContact
 
 SLOTS = (6.0, 4.0, 2.5, 1.5)
@@ -23,17 +24,7 @@ SLOTS = (6.0, 4.0, 2.5, 1.5)
 
 def _comb(tooth=8.0, depth=40.0, base=12.0):
     """Counter-clockwise outline of a comb, teeth up, slots ``SLOTS`` (eps 1)."""
-    width = tooth * (len(SLOTS) + 1) + sum(SLOTS)
-    top = base + depth
-    pts = [(0.0, 0.0), (width, 0.0), (width, top)]
-    x = width - tooth
-    for s in SLOTS[::-1]:
-        pts += [(x, top), (x, base), (x - s, base), (x - s, top)]
-        x -= s + tooth
-    pts.append((0.0, top))
-    loops = [np.array(pts, float)]
-    lo, hi = loops[0].min(0), loops[0].max(0)
-    return loops, ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
+    return slotted_block(SLOTS, tooth, depth, base)
 
 
 def test_comb_at_sigma_01_eps_within_twice_the_noiseless_motions():

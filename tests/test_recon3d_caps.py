@@ -86,8 +86,8 @@ def test_only_a_fill_closed_by_a_chord_is_capped(u_prism):
     nx, ny = grid.shape
     f_u, f_block, f_closed = (slice_sdf(r, grid).reshape(ny, nx)
                               for r in (regions[0], block, regions[2]))
-    assert cap_unsensed(f_block, f_u, block, regions[0], grid) is None
-    caps = cap_unsensed(f_closed, f_u, regions[2], regions[0], grid)
+    assert cap_unsensed(f_block, f_u, block, regions[0], grid, 4.0) is None
+    caps = cap_unsensed(f_closed, f_u, regions[2], regions[0], grid, 4.0)
     slot = (f_closed > 0) & (f_u <= 0)
     assert caps is not None and np.array_equal(caps.fill_a, slot)
     assert not (caps.fill_b.any() or caps.empty_a.any() or caps.empty_b.any())

@@ -27,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import binary_dilation, binary_opening, label
+from scipy.ndimage import binary_dilation, binary_opening, label, maximum
 from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
@@ -49,6 +49,11 @@ class CapSettings:
         (0: at the slice itself, 0.5: half-way).
     thin : int -- grid steps of the opening that splits a component's wide parts off its
         thin strips (0: whole components only).
+    deep : float -- a fill is capped only where, somewhere in it, each slice's boundary lies
+        at least this many gaps from the other's (the fields are truncated at the gap: at
+        most 1).
+    enclosed : float -- an empty is capped only where the filled slice's boundary along it
+        is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
     """
@@ -59,6 +64,8 @@ class CapSettings:
     at: float = 0.0
     thin: int = 2
     own: bool = True
+    deep: float = 1.0
+    enclosed: float = 0.25
 
 
 def unsensed_pieces(region, step: float):
@@ -76,22 +83,22 @@ def unsensed_pieces(region, step: float):
 
 
 def _side_share(comp, ncomp, edge, nodes, pieces, reach):
-    """(ncomp,) share of each component's edge nodes whose nearest piece is unsensed (nan:
-    no edge node near a piece)."""
+    """Per component: the share of its edge nodes whose nearest piece is unsensed (nan: no
+    edge node near a piece) and the number of edge nodes near a piece; (ncomp,) each."""
     tree, uns = pieces
     sel = np.flatnonzero(edge.ravel())
     if tree is None or len(sel) == 0:
-        return np.full(ncomp, np.nan)
+        return np.full(ncomp, np.nan), np.zeros(ncomp)
     d, j = tree.query(nodes[sel], distance_upper_bound=reach)
     hit = np.isfinite(d)
     lab = comp.ravel()[sel][hit] - 1
     tot = np.bincount(lab, minlength=ncomp).astype(float)
     bad = np.bincount(lab, weights=uns[j[hit]].astype(float), minlength=ncomp)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(tot > 0, bad / tot, np.nan)
+        return np.where(tot > 0, bad / tot, np.nan), tot
 
 
-def _decide(comp, n, fa, fb, nodes, pa, pb, reach, settings):
+def _decide(comp, n, fa, fb, nodes, pa, pb, reach, deep, settings):
     """Per labelled component of ``comp`` (0: none): (cap a's fill, cap b's empty) masks."""
     if n == 0:
         none = np.zeros(comp.shape, dtype=bool)
@@ -101,15 +108,23 @@ def _decide(comp, n, fa, fb, nodes, pa, pb, reach, settings):
     in_comp = comp > 0
     edge_a = in_comp & binary_dilation(fa <= 0) & (np.abs(fb) > reach)
     edge_b = in_comp & binary_dilation(fb > 0) & (np.abs(fa) > reach)
-    sa = _side_share(comp, n, edge_a, nodes, pa, reach)
-    sb = _side_share(comp, n, edge_b, nodes, pb, reach)
+    sa, na = _side_share(comp, n, edge_a, nodes, pa, reach)
+    sb, nb = _side_share(comp, n, edge_b, nodes, pb, reach)
     ua, ub = sa > settings.share, sb > settings.share  # nan compares False
-    lut_a = np.concatenate([[False], ua & ~ub])
-    lut_b = np.concatenate([[False], ub & ~ua])
+    sensed_a = sa <= settings.share  # nan (no boundary of a there) compares False
+    # a's fill: closed by chords, where b's side is not; b's empty: bounded by chords where
+    # a's fill around it is not traced either (a traced wall round it: the probe entered)
+    # a fill only where, somewhere in it, each slice's boundary lies ``deep`` from the other's:
+    # a thinner disagreement is a wall that moved (a slope under 45 degrees)
+    deep_ab = np.asarray(maximum(np.minimum(fa, -fb), comp, np.arange(1, n + 1))) >= deep
+    # an empty only where a's fill encloses it (a slit): a's boundary along it is short
+    enclosed = na <= settings.enclosed * nb
+    lut_a = np.concatenate([[False], ua & ~ub & deep_ab])
+    lut_b = np.concatenate([[False], ub & ~sensed_a & enclosed])
     return lut_a[comp], lut_b[comp]
 
 
-def _one_way(fa, fb, nodes, pa, pb, reach, settings):
+def _one_way(fa, fb, nodes, pa, pb, reach, deep, settings):
     """Nodes inside ``a``, outside ``b``: (cap a's fill mask, cap b's empty mask).
 
     Decided per connected component; the parts of a component wider than ``2 thin + 1``
@@ -118,11 +133,11 @@ def _one_way(fa, fb, nodes, pa, pb, reach, settings):
     """
     mask = (fa > 0) & (fb <= 0)
     comp, n = label(mask)
-    fill, empty = _decide(comp, n, fa, fb, nodes, pa, pb, reach, settings)
+    fill, empty = _decide(comp, n, fa, fb, nodes, pa, pb, reach, deep, settings)
     if settings.thin > 0:
         wide = binary_opening(mask, iterations=settings.thin)
         comp_w, n_w = label(wide)
-        fill_w, empty_w = _decide(comp_w, n_w, fa, fb, nodes, pa, pb, reach, settings)
+        fill_w, empty_w = _decide(comp_w, n_w, fa, fb, nodes, pa, pb, reach, deep, settings)
         fill = np.where(wide, fill_w, fill)
         empty = np.where(wide, empty_w, empty)
     return fill, empty
@@ -163,7 +178,7 @@ class GapCaps:
                         out).astype(val.dtype)
 
 
-def cap_unsensed(fa, fb, ra, rb, grid, settings: CapSettings = CapSettings()
+def cap_unsensed(fa, fb, ra, rb, grid, gap: float, settings: CapSettings = CapSettings()
                  ) -> GapCaps | None:
     """The rule's decision for the gap between slices ``a`` and ``b`` (module doc).
 
@@ -172,6 +187,7 @@ def cap_unsensed(fa, fb, ra, rb, grid, settings: CapSettings = CapSettings()
     fa, fb : (ny, nx) float32 -- slice ``a`` and ``b`` fields (positive inside), truncated.
     ra, rb : SliceRegion -- their regions (for the pieces' kinds).
     grid : FamilyGrid
+    gap : float -- distance between the two planes.
 
     Returns
     -------
@@ -183,8 +199,9 @@ def cap_unsensed(fa, fb, ra, rb, grid, settings: CapSettings = CapSettings()
     s = grid.step
     pa, pb = unsensed_pieces(ra, s), unsensed_pieces(rb, s)
     reach = settings.reach * s
-    fill_a, empty_b = _one_way(fa, fb, nodes, pa, pb, reach, settings)
-    fill_b, empty_a = _one_way(fb, fa, nodes, pb, pa, reach, settings)
+    deep = 0.999 * settings.deep * gap
+    fill_a, empty_b = _one_way(fa, fb, nodes, pa, pb, reach, deep, settings)
+    fill_b, empty_a = _one_way(fb, fa, nodes, pb, pa, reach, deep, settings)
     if not (fill_a.any() or fill_b.any() or empty_a.any() or empty_b.any()):
         return None
     r = settings.at / (1 - settings.at) if settings.at < 1 else np.inf

@@ -203,7 +203,7 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     clip = [np.float32(max(g, 2 * grid.step)) for g in gaps]  # per gap: steps stay sharp
     warped = route == "warp" and grid.k > 1
     capped = [cap_unsensed(np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t), regions[i],
-                           regions[i + 1], grid, caps) if warped else None
+                           regions[i + 1], grid, float(gaps[i]), caps) if warped else None
               for i, t in enumerate(clip)]
     f = own_caps(f, capped, grid.step) if warped and caps.own else f
     for i in range(len(f) - 1):

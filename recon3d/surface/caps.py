@@ -10,17 +10,28 @@ sensing never saw: a tent over a triangle a chord closes in one slice and not in
 between two chords crossing the open teapot's pot.
 
 The rule, per gap between slices ``a`` and ``b`` and per connected component of the nodes
-where they disagree (inside ``a``, outside ``b``, or the other way round):
+where they disagree (inside ``a``, outside ``b``, or the other way round; the parts wider than
+``2 thin + 1`` steps are decided on their own, so that a thin strip where a wall moved a
+little does not join a wide fill to that wall):
 
-* the component's boundary on each side is split by the kind of the nearest piece of that
-  side's slice (within ``reach`` grid steps): sensed (W1, W2, W3) or not (unknown chords,
-  bridges);
-* if the filled side's boundary is mostly (> ``share``) not sensed and the empty side's is
-  not, the fill ends at its own slice: its value in the blend is lowered so that the blend
-  crosses 0 at ``at`` x the gap from that slice;
-* if the empty side's boundary is mostly not sensed and the filled side's is not, the empty
-  space (a slit between chords) ends at its own slice the same way;
-* otherwise (both sensed: a true change of shape; both not) the blend is left alone.
+* the component's boundary on each side -- where that slice's boundary bounds it, farther
+  than ``reach`` steps from the other slice's boundary (where both run side by side a wall
+  moved, which says nothing) -- is split by the kind of that slice's nearest piece: sensed
+  (W1, W2, W3) or not (unknown chords, bridges), and called unsensed when more than
+  ``share`` of it is;
+* **a fill** of ``a`` ends at ``a`` when its boundary is unsensed, ``b``'s is not, and
+  somewhere in it both slices' boundaries lie a gap (``deep``) away: a thinner disagreement
+  is a face that moved under 45 degrees, which the blend keeps;
+* **an empty** of ``b`` ends at ``b`` when its boundary is unsensed, ``a``'s boundary along it
+  is not sensed either and at most ``enclosed`` of ``b``'s (``a``'s fill encloses it: a slit
+  between chords; a traced wall round it means the probe entered);
+* otherwise the blend is left alone (both sides sensed: a true change of shape).
+
+"Ends at its slice": the blend there is never more solid (more empty) than the plain blend
+of the capped value, chosen to cross 0 at ``at`` x the gap from that slice, and the alignment
+pairs no boundary sample of the capped component. A slice whose fill (empty) is capped
+towards **both** neighbours drops (fills) it on its own plane too (:func:`own_caps`):
+otherwise a flat plate of surface stays on the plane. The end slices keep theirs.
 """
 from __future__ import annotations
 

@@ -109,14 +109,16 @@ def slit_block():
     return mesh, planes, [traced, traced, slit, traced, traced]
 
 
-@pytest.mark.parametrize("off", [None, {"enabled": False}, {"enclosed": -1.0}])
+@pytest.mark.parametrize("off", [None, {"enabled": False}, {"enclosed": -1.0},
+                                 {"slits": False}])
 def test_a_slit_between_chords_inside_the_fill_makes_no_sheet(slit_block, off):
-    """The slit is unsensed empty that the neighbours' fill encloses: it ends at its slice.
-    Without the rule (or without its empty half) the slit is blended into a sheet of surface
-    reaching into both gaps, farther than 2 steps from the block's faces."""
+    """With ``slits``, the slit is unsensed empty that the neighbours' fill encloses: it ends at
+    its slice. Without the rule (or without its empty half, the default) the slit is blended
+    into a sheet of surface reaching into both gaps, farther than 2 steps from the block."""
     mesh, planes, regions = slit_block
     surface = fuse([family_solid(regions, planes, STEP,
-                                 caps=CapSettings(**(off or {})))], mesh.bounds)
+                                 caps=CapSettings(**{"slits": True, **(off or {})}))],
+                   mesh.bounds)
     lo, hi = planes[0].offset, planes[-1].offset
     truth = trimesh.creation.box((20.0, 12.0, hi - lo)).apply_translation([0, 0, (lo + hi) / 2])
     pts, _ = trimesh.sample.sample_surface(surface, 5000, seed=3)
@@ -130,7 +132,7 @@ def _slanted(z0, z1):
     return trimesh.convex.convex_hull(np.array(pts))
 
 
-@pytest.mark.parametrize("traced, off", [((), None), ((), {"enclosed": 1e9}),
+@pytest.mark.parametrize("traced, off", [((), None), ((), {"slits": True, "enclosed": 1e9}),
                                          ((1, 3), None), ((1, 3), {"deep": 0.0})])
 def test_a_slanted_face_closed_by_bridges_stays_slanted(traced, off):
     """Slices close the moving face with a bridge (no contact there), those in ``traced``

@@ -22,9 +22,10 @@ little does not join a wide fill to that wall):
 * **a fill** of ``a`` ends at ``a`` when its boundary is unsensed, ``b``'s is not, and
   somewhere in it both slices' boundaries lie a gap (``deep``) away: a thinner disagreement
   is a face that moved under 45 degrees, which the blend keeps;
-* **an empty** of ``b`` ends at ``b`` when its boundary is unsensed, ``a``'s boundary along it
-  is not sensed either and at most ``enclosed`` of ``b``'s (``a``'s fill encloses it: a slit
-  between chords; a traced wall round it means the probe entered);
+* **an empty** of ``b`` ends at ``b`` (only with ``slits``, off by default: see
+  :class:`CapSettings`) when its boundary is unsensed, ``a``'s boundary along it is not sensed
+  either and at most ``enclosed`` of ``b``'s (``a``'s fill encloses it: a slit between
+  chords; a traced wall round it means the probe entered);
 * otherwise the blend is left alone (both sides sensed: a true change of shape).
 
 "Ends at its slice": the blend there is never more solid (more empty) than the plain blend
@@ -63,6 +64,10 @@ class CapSettings:
     deep : float -- a fill is capped only where, somewhere in it, each slice's boundary lies
         at least this many gaps from the other's (the fields are truncated at the gap: at
         most 1).
+    slits : bool -- also cap empties (off by default). Measured (``bench/surface_cases.py``,
+        F@1%): it lifts the open teapot along x 0.8858 -> 0.9158 and along z 0.8270 ->
+        0.8634, but z+x only to 0.9019 (z's probe swept channels inside the pot, which carve
+        x's filled interior): z+x would fall 0.014 below x alone, where it is equal without.
     enclosed : float -- an empty is capped only where the filled slice's boundary along it
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
@@ -76,6 +81,7 @@ class CapSettings:
     thin: int = 2
     own: bool = True
     deep: float = 1.0
+    slits: bool = False
     enclosed: float = 0.25
 
 
@@ -131,7 +137,7 @@ def _decide(comp, n, fa, fb, nodes, pa, pb, reach, deep, settings):
     # an empty only where a's fill encloses it (a slit): a's boundary along it is short
     enclosed = na <= settings.enclosed * nb
     lut_a = np.concatenate([[False], ua & ~ub & deep_ab])
-    lut_b = np.concatenate([[False], ub & ~sensed_a & enclosed])
+    lut_b = np.concatenate([[False], ub & ~sensed_a & enclosed & settings.slits])
     return lut_a[comp], lut_b[comp]
 
 
@@ -233,8 +239,9 @@ def own_caps(f: list, capped: list, step: float) -> list:
     A fill of slice ``i`` that both its gaps end at slice ``i`` would still leave a flat
     plate of surface on the plane (a chord's triangle in an open cavity, two faces of it);
     both neighbouring slices show the space empty and slice ``i`` only closed it, so the
-    slice drops it. Likewise an unsensed empty (a slit between two chords) both neighbours
-    fill is filled. End slices (one neighbour) keep theirs.
+    slice drops it: its value there becomes the mean of the neighbours' (negative), so that
+    the fusion reads it as empty on this plane too. Likewise an unsensed empty (a slit between
+    two chords) both neighbours fill is filled. End slices (one neighbour) keep theirs.
 
     Parameters
     ----------
@@ -256,7 +263,8 @@ def own_caps(f: list, capped: list, step: float) -> list:
         fill = lo.empty_b & hi.empty_a
         if drop.any() or fill.any():
             g = f[i].copy()
-            g[drop] = np.minimum(g[drop], -tiny)
-            g[fill] = np.maximum(g[fill], tiny)
+            mean = 0.5 * (f[i - 1] + f[i + 1])  # the neighbours' say (both empty / both solid)
+            g[drop] = np.minimum(g[drop], np.minimum(mean[drop], -tiny))
+            g[fill] = np.maximum(g[fill], np.maximum(mean[fill], tiny))
             out[i] = g
     return out

@@ -151,7 +151,8 @@ def main(argv=None) -> int:
             draw(args.png / f"{name}_{axis}.png",
                  [(f"{name} along {axis}, without the rule: precision {off['precision']:.3f}",
                    off["_figure"]),
-                  (f"with the rule (caps.py): precision {row['precision']:.3f}",
+                  (f"with the rule (caps.py{'' if args.caps == '{}' else ', ' + args.caps}):"
+                   f" precision {row['precision']:.3f}",
                    row["_figure"])])
     return 0
 

@@ -129,12 +129,11 @@ def _decide(comp, n, fa, fb, nodes, pa, pb, reach, deep, settings):
     sb, nb = _side_share(comp, n, edge_b, nodes, pb, reach)
     ua, ub = sa > settings.share, sb > settings.share  # nan compares False
     sensed_a = sa <= settings.share  # nan (no boundary of a there) compares False
-    # a's fill: closed by chords, where b's side is not; b's empty: bounded by chords where
-    # a's fill around it is not traced either (a traced wall round it: the probe entered)
-    # a fill only where, somewhere in it, each slice's boundary lies ``deep`` from the other's:
-    # a thinner disagreement is a wall that moved (a slope under 45 degrees)
+    # a's fill: closed by chords where b's side is not, and somewhere in it each slice's
+    # boundary lies ``deep`` from the other's (thinner: a wall that moved, under 45 degrees)
     deep_ab = np.asarray(maximum(np.minimum(fa, -fb), comp, np.arange(1, n + 1))) >= deep
-    # an empty only where a's fill encloses it (a slit): a's boundary along it is short
+    # b's empty (``slits``): bounded by chords, a's fill around it not traced either (a traced
+    # wall round it: the probe entered) and enclosing it (a's boundary along it is short)
     enclosed = na <= settings.enclosed * nb
     lut_a = np.concatenate([[False], ua & ~ub & deep_ab])
     lut_b = np.concatenate([[False], ub & ~sensed_a & enclosed & settings.slits])

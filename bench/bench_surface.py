@@ -6,8 +6,9 @@ each, default eps); from the same sensing the surface is rebuilt
 
 * **before** -- plain shape-based interpolation between slices (``route='linear'``) and the
   space-carving fusion (``fusion='carve'``),
-* **after** -- the aligned interpolation (``route='warp'``) and the confidence-weighted
-  fusion (``fusion='weighted'``),
+* **after** -- the aligned interpolation (``route='warp'``, space only closed by unknown
+  chords or bridges ending at its slice: :mod:`recon3d.surface.caps`) and the
+  confidence-weighted fusion (``fusion='weighted'``),
 
 for z alone, x alone and z+x, and scored with recon3d's own metrics
 (:func:`recon3d.score.evaluate.surface_metrics`): slab share (ground truth scored), reachable

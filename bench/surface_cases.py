@@ -1,9 +1,10 @@
 """F@1% of single surfaces from ``bench_surface``'s cached sensing, with settings overridden.
 
 Each ``CASE:WHAT:N`` (``WHAT`` one of ``z``, ``x``, ``z+x``; ``N`` slices per axis) is rebuilt
-with the default route and fusion, :class:`recon3d.surface.fusion.FusionSettings` and
-:class:`recon3d.surface.confidence.ConfidenceSettings` overridden by ``--blend`` and
-``--trust`` (JSON objects), and scored as ``bench_surface`` scores it (F@1% over the scored
+with the default route and fusion, :class:`recon3d.surface.fusion.FusionSettings`,
+:class:`recon3d.surface.confidence.ConfidenceSettings` and
+:class:`recon3d.surface.caps.CapSettings` overridden by ``--blend``, ``--trust`` and
+``--caps`` (JSON objects), and scored as ``bench_surface`` scores it (F@1% over the scored
 ground truth and over its reachable part, 4 decimals). For measuring a fusion parameter on
 a few cases without the whole table.
 
@@ -22,6 +23,7 @@ from pathlib import Path
 from bench.bench_surface import scores, sensed
 from recon3d.records import MeshRun
 from recon3d.surface import reconstruct
+from recon3d.surface.caps import CapSettings
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.fusion import FusionSettings
 
@@ -42,14 +44,17 @@ def main(argv=None) -> int:
     ap.add_argument("--cache", type=Path, required=True, help="bench_surface's sensing cache")
     ap.add_argument("--blend", default="{}", help="FusionSettings overrides (JSON)")
     ap.add_argument("--trust", default="{}", help="ConfidenceSettings overrides (JSON)")
+    ap.add_argument("--caps", default="{}", help="CapSettings overrides (JSON), e.g. "
+                    "'{\"enabled\": false}'")
     args = ap.parse_args(argv)
     blend = FusionSettings(**json.loads(args.blend))
     trust = ConfidenceSettings(**json.loads(args.trust))
+    caps = CapSettings(**json.loads(args.caps))
     for spec in args.specs:
         name, what, n = spec.rsplit(":", 2)
         t0 = time.perf_counter()
         run = run_of(name, what, int(n), args.cache)
-        s = scores(run, reconstruct(run, trust=trust, blend=blend).surface)
+        s = scores(run, reconstruct(run, trust=trust, blend=blend, caps=caps).surface)
         print(f"{name:26s} {what:4s} {n:>3s}  F@1% {s['f1']:.4f}  reachable {s['f1r']:.4f}"
               f"  {time.perf_counter() - t0:.0f} s", flush=True)
     return 0

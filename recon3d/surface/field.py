@@ -10,7 +10,8 @@ normal by one of two routes (:data:`ROUTES`):
 
 * ``'warp'`` (default) -- the two slices aligned first (:mod:`recon3d.surface.warp`):
   a thin wall that moves more than its thickness from one slice to the next stays a
-  wall, a ring stays a ring;
+  wall, a ring stays a ring; space a slice only closed with unknown chords or bridges,
+  where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`);
 * ``'linear'`` -- plain shape-based interpolation (Herman et al. 1992): a loop that keeps
   its shape makes a straight prism, a loop that vanishes tapers off at roughly 45 degrees,
   loops that split or merge do so half-way.
@@ -29,6 +30,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from recon3d.surface.caps import CapSettings, cap_unsensed, own_caps
 from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
                                         in_plane_share, seen_map)
 from recon3d.surface.warp import WarpSettings, warp_gap
@@ -169,7 +171,8 @@ def slice_sdf(region, grid: FamilyGrid) -> np.ndarray:
 
 def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bool = False,
                   warp: WarpSettings = WarpSettings(),
-                  trust: ConfidenceSettings = ConfidenceSettings()
+                  trust: ConfidenceSettings = ConfidenceSettings(),
+                  caps: CapSettings = CapSettings()
                   ) -> tuple[np.ndarray, np.ndarray | None]:
     """The field of a family and, optionally, its confidence (see module doc).
 
@@ -180,6 +183,8 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     route : {'warp', 'linear'} -- aligned blend (:mod:`recon3d.surface.warp`) or the plain
         shape-based interpolation.
     confidence : bool -- also return the confidence (:mod:`recon3d.surface.confidence`).
+    caps : CapSettings -- with the aligned blend, space a slice only closed (unknown chords,
+        bridges) ends at that slice (:mod:`recon3d.surface.caps`).
 
     Returns
     -------
@@ -196,13 +201,21 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     w = np.arange(grid.k, dtype=np.float32) / grid.k
     w3 = w[:, None, None]
     gaps = np.diff(grid.heights)
+    clip = [np.float32(max(g, 2 * grid.step)) for g in gaps]  # per gap: steps stay sharp
+    warped = route == "warp" and grid.k > 1
+    capped = [cap_unsensed(np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t), regions[i],
+                           regions[i + 1], grid, float(gaps[i]), caps) if warped else None
+              for i, t in enumerate(clip)]
+    f = own_caps(f, capped, grid.step) if warped and caps.own else f
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
-        gap = float(gaps[i])
-        t = np.float32(max(gap, 2 * grid.step))  # per gap: uneven slices keep steps sharp
+        gap, t, cap = float(gaps[i]), clip[i], capped[i]
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
-        if route == "warp" and grid.k > 1:
-            val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp)
+        if warped:
+            skip = cap.skip() if cap is not None else (None, None)
+            val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp, *skip)
+            if cap is not None:
+                val = cap.apply(val, w3)
         else:
             val = (1 - w3) * fa + w3 * fb
             va, vb, move = np.broadcast_to(fa, val.shape), np.broadcast_to(fb, val.shape), None

@@ -12,6 +12,7 @@ import trimesh
 
 from recon3d.config import diagonal
 from recon3d.records import MeshRun
+from recon3d.surface.caps import CapSettings
 from recon3d.surface.closure import SliceRegion, slice_region
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import grid_step
@@ -44,7 +45,8 @@ class Reconstruction:
 
 def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
                 trust: ConfidenceSettings = ConfidenceSettings(),
-                blend: FusionSettings = FusionSettings()) -> Reconstruction:
+                blend: FusionSettings = FusionSettings(),
+                caps: CapSettings = CapSettings()) -> Reconstruction:
     """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`.
 
     Parameters
@@ -55,6 +57,8 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
         (:data:`recon3d.surface.solid.FUSIONS`).
     trust : ConfidenceSettings -- how much each family knows where (weighted fusion).
     blend : FusionSettings -- parameters of the weighted fusion.
+    caps : CapSettings -- with ``route='warp'``, space a slice only closed (unknown chords,
+        bridges) ends at that slice between slices (:mod:`recon3d.surface.caps`).
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
@@ -69,7 +73,7 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
             notes.append(f"family {fam.label}: a surface needs at least 2 slices")
             continue
         solid = family_solid(regs, [s.slice.plane for s in fam.slices], step, route, keep,
-                             trust)
+                             trust, caps)
         if solid is None:
             notes.append(f"family {fam.label}: nothing sensed, no surface")
         solids.append(solid)

@@ -34,6 +34,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 import slicer
+from recon3d.surface.caps import CapSettings
 from recon3d.surface.closure import KIND_LABEL, SliceRegion, sample_pieces
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import ROUTES, FamilyField, family_grid, family_volume
@@ -111,7 +112,8 @@ def _face_labels(points, faces, grid, regions) -> np.ndarray:
 
 def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
                  step: float, route: str = "warp", keep_field: bool = False,
-                 trust: ConfidenceSettings = ConfidenceSettings()) -> FamilySolid | None:
+                 trust: ConfidenceSettings = ConfidenceSettings(),
+                 caps: CapSettings = CapSettings()) -> FamilySolid | None:
     """Level set of one family's field (see module doc).
 
     Parameters
@@ -123,6 +125,7 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     keep_field : bool -- also compute the confidence and keep the field (for the weighted
         fusion of several families).
     trust : ConfidenceSettings -- parameters of that confidence.
+    caps : CapSettings -- unsensed space ends at its slice (:mod:`recon3d.surface.caps`).
 
     Returns
     -------
@@ -136,7 +139,8 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     regions = [regions[i] for i in order]
     heights = np.array([p.offset for p in planes])
     grid = family_grid(regions, heights, step)
-    vol, conf = family_volume(regions, grid, route, confidence=keep_field, trust=trust)
+    vol, conf = family_volume(regions, grid, route, confidence=keep_field, trust=trust,
+                              caps=caps)
     img = pv.ImageData(dimensions=(grid.shape[0], grid.shape[1], grid.layers),
                        spacing=(step, step, 1.0), origin=(grid.x0, grid.y0, 0.0))
     img.point_data["f"] = vol.ravel()

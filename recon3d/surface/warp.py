@@ -142,8 +142,19 @@ def sample_field(f: np.ndarray, grid, xy: np.ndarray) -> np.ndarray:
                            mode="nearest").reshape(gx.shape)
 
 
+def _kept(p, n, grid, skip):
+    """Boundary samples ``p``, ``n`` (m, 2) whose nearest node is not in ``skip``."""
+    if skip is None or len(p) == 0:
+        return p, n
+    ix = np.clip(np.rint((p[:, 0] - grid.x0) / grid.step).astype(np.int64), 0, skip.shape[1] - 1)
+    iy = np.clip(np.rint((p[:, 1] - grid.y0) / grid.step).astype(np.int64), 0, skip.shape[0] - 1)
+    keep = ~skip[iy, ix]
+    return p[keep], n[keep]
+
+
 def warp_gap(fa: np.ndarray, fb: np.ndarray, grid, gap: float, w: np.ndarray,
-             settings: WarpSettings = WarpSettings()
+             settings: WarpSettings = WarpSettings(), skip_a: np.ndarray | None = None,
+             skip_b: np.ndarray | None = None
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The aligned blend of two neighbouring slice fields (module doc, steps 1-4).
 
@@ -153,6 +164,8 @@ def warp_gap(fa: np.ndarray, fb: np.ndarray, grid, gap: float, w: np.ndarray,
     grid : FamilyGrid
     gap : float -- distance between the two planes.
     w : (k,) float -- fractions of the gap of the layers to fill (0 = slice ``i``).
+    skip_a, skip_b : (ny, nx) bool, optional -- nodes whose boundary samples are not matched
+        (:meth:`recon3d.surface.caps.GapCaps.skip`).
 
     Returns
     -------
@@ -160,8 +173,8 @@ def warp_gap(fa: np.ndarray, fb: np.ndarray, grid, gap: float, w: np.ndarray,
     va, vb : (k, ny, nx) float32 -- the two slices' fields sampled along the move.
     move : (ny, nx) float -- length of the displacement.
     """
-    pa, na = boundary_samples(fa, grid.x0, grid.y0, grid.step)
-    pb, nb = boundary_samples(fb, grid.x0, grid.y0, grid.step)
+    pa, na = _kept(*boundary_samples(fa, grid.x0, grid.y0, grid.step), grid, skip_a)
+    pb, nb = _kept(*boundary_samples(fb, grid.x0, grid.y0, grid.step), grid, skip_b)
     reach = settings.reach * gap
     ia, ib = match_boundaries(pa, na, pb, nb, reach, gap, settings.min_cos)
     jb, ja = match_boundaries(pb, nb, pa, na, reach, gap, settings.min_cos)

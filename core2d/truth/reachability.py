@@ -39,6 +39,8 @@ import shapely
 
 from core2d.visibility import free_gaps
 
+from .free_ray import HALF_ANGLE, normal_cone_free
+
 __all__ = [
     "ContourSamples",
     "as_loops",
@@ -238,9 +240,28 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     hull = shapely.convex_hull(shapely.multipoints(a)).boundary
     ok = shapely.distance(shapely.points(points), hull) <= atol
     todo = np.flatnonzero(~ok)
+    if len(todo) and angle_tol < HALF_ANGLE:  # a free normal cone proves the rest
+        ok[todo] = _cone_proves(points[todo], edge_ids[todo], a, b, atol)
+        todo = todo[~ok[todo]]
     if len(todo):
         ok[todo] = free_angle(loops, points[todo], edge_ids[todo], chunk) > angle_tol
     return ok
+
+
+def _cone_proves(p, own, a, b, atol) -> np.ndarray:
+    """(c,) bool: points inside their edge whose outward normal cone is free
+    (:func:`core2d.truth.free_ray.normal_cone_free`, margin 1e-9 of the
+    coordinates' size): reachable for certain."""
+    ea, eb = a[own], b[own]
+    ulen = np.hypot(*(eb - ea).T)
+    inner = (np.hypot(*(p - ea).T) > atol) & (np.hypot(*(p - eb).T) > atol) & (ulen > 0)
+    out = np.zeros(len(p), dtype=bool)
+    if inner.any():
+        tangents = (eb - ea)[inner] / ulen[inner, None]
+        margin = 1e-9 * max(float(np.ptp(a, axis=0).max()), float(np.abs(a).max()), 1e-300)
+        center = 0.5 * (a.min(axis=0) + a.max(axis=0))
+        out[inner] = normal_cone_free(p[inner], tangents, a, b, own[inner], margin, center)
+    return out
 
 
 def reachable_samples(loops, spacing: float, **kwargs) -> tuple[ContourSamples, np.ndarray]:

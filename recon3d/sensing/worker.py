@@ -18,13 +18,13 @@ import logging
 from dataclasses import dataclass, replace
 
 import numpy as np
-import shapely
 import trimesh
 
 import core2d
 import slicer
 from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
+from core2d.truth.nearest import polyline_segments, segment_distances
 from core2d.truth.reachability import reachable_samples
 from recon3d.io.documents import slice_document
 from recon3d.io.motions import slice_rows
@@ -110,17 +110,7 @@ def no_reference_metrics(result, settings: SenseSettings) -> dict:
 
 def _covered(points, result, tol) -> np.ndarray:
     """(m,) bool: within ``tol`` of the W1 polylines and W2 segments."""
-    parts = [np.asarray(p, dtype=np.float64).reshape(-1, 2) for p in (*result.w1, *result.w2)]
-    parts = [p for p in parts if len(p) >= 2]
-    if not parts or len(points) == 0:
-        return np.zeros(len(points), dtype=bool)
-    idx = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
-    tree = shapely.STRtree(shapely.linestrings(np.concatenate(parts), indices=idx))
-    hit, dist = tree.query_nearest(shapely.points(points), return_distance=True,
-                                   all_matches=False)
-    out = np.zeros(len(points), dtype=bool)
-    out[hit[0]] = dist <= tol
-    return out
+    return segment_distances(points, *polyline_segments((*result.w1, *result.w2))) <= tol
 
 
 class WorkerState:

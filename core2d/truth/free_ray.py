@@ -34,7 +34,7 @@ __all__ = ["HALF_ANGLE", "candidate_directions", "normal_cone_free"]
 #: half-angle (rad) of a cone that must be free
 HALF_ANGLE = 1e-5
 #: turns (rad) of the outward normal tried besides it, both ways
-TURNS = (0.6, 1.2)
+TURNS = (0.6, 1.2, 0.5 * math.pi - 0.05, 0.5 * math.pi - 0.01)
 #: largest turn from the normal a candidate may have (the cone stays in the free half-plane)
 MAX_TURN = 1.4
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import trimesh
+from threadpoolctl import ThreadpoolController
 
 import core2d
 import slicer
@@ -125,6 +126,7 @@ class WorkerState:
     def __init__(self, settings: SenseSettings, families: list):
         self.settings = settings
         self.families = families
+        self._blas = None  # threadpoolctl's view of this process's BLAS, made on first use
 
     @classmethod
     def rebuild(cls, vertices, faces, settings: SenseSettings) -> WorkerState:
@@ -139,11 +141,20 @@ class WorkerState:
 
         The returned SliceRun has ``slice=None`` (the parent holds the slices), its rows
         of ``motions.csv`` (``motion_rows``) and its entry of ``sensing.json``
-        (``document``), both made here, beside the other workers."""
-        srun = self._sense(family, index, eps)
-        cut = self.families[family][index]
-        srun.motion_rows = slice_rows(srun, cut.plane)
-        srun.document = slice_document(srun, cut)
+        (``document``), both made here, beside the other workers.
+
+        BLAS runs one thread meanwhile (restored after): a slice's arrays are small, and
+        OpenBLAS's threads, idle-spinning beside the other workers, cost more CPU than
+        they save (measured: cutting the mesh at a plane, 22 ms of CPU with two
+        threads, 1.4 ms with one). Outputs compared identical on the built-in scenes
+        and the large mesh (``bench.compare_commits``, ``bench.bench_large --before``)."""
+        if self._blas is None:
+            self._blas = ThreadpoolController()
+        with self._blas.limit(limits=1, user_api="blas"):
+            srun = self._sense(family, index, eps)
+            cut = self.families[family][index]
+            srun.motion_rows = slice_rows(srun, cut.plane)
+            srun.document = slice_document(srun, cut)
         return srun
 
     def _sense(self, family: int, index: int, eps: float | None) -> SliceRun:

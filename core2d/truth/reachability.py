@@ -220,9 +220,11 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     """(m,) bool: some ray from the point to infinity crosses no contour edge.
 
     Points on the convex hull boundary are accepted without the full test
-    (the outward normal of a supporting line is free). Elsewhere this is
+    (the outward normal of a supporting line is free), and so are points with
+    a free cone of directions (:mod:`core2d.truth.free_ray`: a gap of at least
+    2e-5 rad, used while ``angle_tol`` is below 1e-5). Elsewhere this is
     ``free_angle(...) > angle_tol``: grazing rays and measure-zero gaps are
-    blocked. Hole loops come out unreachable because every ray from them
+    blocked. The answers are those of the exact test alone. Hole loops come out unreachable because every ray from them
     must cross their outer loop.
 
     Examples

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import meshes
 import slicer
@@ -136,6 +137,20 @@ def test_reachable_is_the_exact_test_on_real_slices(slices, monkeypatch):
     assert sum(asked) < 0.25 * total  # the exact arcs for a quarter of the samples at most
 
 
+def test_the_exact_arcs_run_whatever_the_cone_proves(monkeypatch):
+    """An L-shaped section: every sample reachable, those of the inner corner's walls off
+    the hull and proved by the cone; the exact arcs still check one of them (so a run
+    compiles the same kernels on any contour: the first-compile notice depends on it)."""
+    loops = [np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 4.0], [0.0, 4.0]])]
+    samp = R.sample_contour(loops, 0.1)
+    asked = []
+    exact = R.free_angle
+    monkeypatch.setattr(R, "free_angle",
+                        lambda lp, pts, *a, **k: asked.append(len(pts)) or exact(lp, pts, *a, **k))
+    assert R.reachable(loops, samp.points, samp.edge).all()
+    assert asked == [1]
+
+
 def test_cone_never_proves_an_unreachable_point(slices):
     """Wherever the exact test says unreachable, the cone proves nothing (slots, holes)."""
     cases = [lp for _, lp in slices] + [keyhole(2.0), slotted_box(1.0, 6.0), slotted_box(0.2, 3.0)]
@@ -153,19 +168,22 @@ def test_cone_never_proves_an_unreachable_point(slices):
 
 
 @settings(**SETTINGS)
-@given(loops=polygons_with_holes())
-def test_reachable_is_the_exact_test_with_holes(loops):
+@given(loops=st.one_of(polygons_with_holes(), polygons_with_islands()))
+def test_reachable_is_the_exact_test_with_holes_and_islands(loops):
     samp = R.sample_contour(loops, 0.25)
     assert np.array_equal(R.reachable(loops, samp.points, samp.edge),
                           exact_reachable(loops, samp.points, samp.edge))
 
 
-@settings(**SETTINGS)
-@given(loops=polygons_with_islands())
-def test_reachable_is_the_exact_test_with_islands(loops):
-    samp = R.sample_contour(loops, 0.25)
-    assert np.array_equal(R.reachable(loops, samp.points, samp.edge),
-                          exact_reachable(loops, samp.points, samp.edge))
+def test_segment_distances_with_non_finite_input():
+    """Non-finite coordinates (one cell holds every segment): finite points get their
+    distance to the finite segments, a NaN point inf."""
+    a = np.array([[0.0, 0.0], [np.nan, 1.0], [5.0, 5.0]])
+    b = np.array([[1.0, 0.0], [2.0, 2.0], [6.0, 5.0]])
+    p = np.array([[0.5, 2.0], [5.5, 4.0], [np.nan, 0.0]])
+    got = segment_distances(p, a, b)
+    assert got[:2].tolist() == [2.0, 1.0]
+    assert got[2] == np.inf
 
 
 def test_a_wide_angle_tol_skips_the_cone():

@@ -54,22 +54,20 @@ def segment_distances(points, seg_a, seg_b) -> np.ndarray:
     out = np.full(len(p), np.inf)
     if len(p) == 0 or len(a) == 0:
         return out
-    if not (np.isfinite(a).all() and np.isfinite(b).all() and np.isfinite(p).all()):
-        _brute(p, a, b, out)
-        return out
-    lo = np.minimum(a, b).min(axis=0)
-    hi = np.maximum(a, b).max(axis=0)
-    span = float(max((hi - lo).max(), 1e-300))
-    per_side = max(1, min(512, int(math.sqrt(len(a)))))
-    h = span / per_side
-    nx = int((hi[0] - lo[0]) // h) + 1
-    ny = int((hi[1] - lo[1]) // h) + 1
+    if np.isfinite(a).all() and np.isfinite(b).all():
+        lo = np.minimum(a, b).min(axis=0)
+        hi = np.maximum(a, b).max(axis=0)
+        span = float(max((hi - lo).max(), 1e-300))
+        h = span / max(1, min(512, int(math.sqrt(len(a)))))
+        nx, ny = int((hi[0] - lo[0]) // h) + 1, int((hi[1] - lo[1]) // h) + 1
+    else:  # one cell holds every segment: each point meets all of them
+        lo, h, nx, ny = np.zeros(2), 1.0, 1, 1
     start, items = _grid(a, b, lo[0], lo[1], h, nx, ny)
     _query(p, a, b, lo[0], lo[1], h, nx, ny, start, items, out)
     return out
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True)
 def _point_segment(px, py, ax, ay, bx, by):  # pragma: no cover - compiled
     """GEOS ``Distance::pointToSegment``, operation for operation."""
     if ax == bx and ay == by:
@@ -88,18 +86,6 @@ def _point_segment(px, py, ax, ay, bx, by):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True)
-def _brute(p, a, b, out):  # pragma: no cover - compiled
-    """Every point against every segment (non-finite input)."""
-    for i in range(p.shape[0]):
-        best = np.inf
-        for j in range(a.shape[0]):
-            d = _point_segment(p[i, 0], p[i, 1], a[j, 0], a[j, 1], b[j, 0], b[j, 1])
-            if d < best:
-                best = d
-        out[i] = best
-
-
-@numba.njit(cache=True, nogil=True)
 def _cells(x, x0, h, n):  # pragma: no cover - compiled
     """Cell index of coordinate ``x``, clamped to ``[0, n)``."""
     k = int(math.floor((x - x0) / h))
@@ -107,15 +93,22 @@ def _cells(x, x0, h, n):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True)
+def _box(a, b, j, x0, y0, h, nx, ny):  # pragma: no cover - compiled
+    """Cell ranges ``(i0, i1, k0, k1)`` of segment j's bounding box, one cell wider on
+    every side (so a rounded cell index never loses a segment)."""
+    i0 = max(_cells(min(a[j, 0], b[j, 0]), x0, h, nx) - 1, 0)
+    i1 = min(_cells(max(a[j, 0], b[j, 0]), x0, h, nx) + 1, nx - 1)
+    k0 = max(_cells(min(a[j, 1], b[j, 1]), y0, h, ny) - 1, 0)
+    k1 = min(_cells(max(a[j, 1], b[j, 1]), y0, h, ny) + 1, ny - 1)
+    return i0, i1, k0, k1
+
+
+@numba.njit(cache=True, nogil=True)
 def _grid(a, b, x0, y0, h, nx, ny):  # pragma: no cover - compiled
-    """Cells of each segment's bounding box, one cell wider on every side (so a
-    rounded cell index never loses a segment): CSR ``start`` (nx * ny + 1), ``items``."""
+    """The segments of each cell (:func:`_box`): CSR ``start`` (nx * ny + 1), ``items``."""
     count = np.zeros(nx * ny + 1, np.int64)
     for j in range(a.shape[0]):
-        i0 = max(_cells(min(a[j, 0], b[j, 0]), x0, h, nx) - 1, 0)
-        i1 = min(_cells(max(a[j, 0], b[j, 0]), x0, h, nx) + 1, nx - 1)
-        k0 = max(_cells(min(a[j, 1], b[j, 1]), y0, h, ny) - 1, 0)
-        k1 = min(_cells(max(a[j, 1], b[j, 1]), y0, h, ny) + 1, ny - 1)
+        i0, i1, k0, k1 = _box(a, b, j, x0, y0, h, nx, ny)
         for i in range(i0, i1 + 1):
             for k in range(k0, k1 + 1):
                 count[i * ny + k + 1] += 1
@@ -123,10 +116,7 @@ def _grid(a, b, x0, y0, h, nx, ny):  # pragma: no cover - compiled
     fill = start[:-1].copy()
     items = np.empty(start[-1], np.int64)
     for j in range(a.shape[0]):
-        i0 = max(_cells(min(a[j, 0], b[j, 0]), x0, h, nx) - 1, 0)
-        i1 = min(_cells(max(a[j, 0], b[j, 0]), x0, h, nx) + 1, nx - 1)
-        k0 = max(_cells(min(a[j, 1], b[j, 1]), y0, h, ny) - 1, 0)
-        k1 = min(_cells(max(a[j, 1], b[j, 1]), y0, h, ny) + 1, ny - 1)
+        i0, i1, k0, k1 = _box(a, b, j, x0, y0, h, nx, ny)
         for i in range(i0, i1 + 1):
             for k in range(k0, k1 + 1):
                 items[fill[i * ny + k]] = j

@@ -242,9 +242,16 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     hull = shapely.convex_hull(shapely.multipoints(a)).boundary
     ok = shapely.distance(shapely.points(points), hull) <= atol
     todo = np.flatnonzero(~ok)
-    if len(todo) and angle_tol < HALF_ANGLE:  # a free normal cone proves the rest
-        ok[todo] = _cone_proves(points[todo], edge_ids[todo], a, b, atol)
-        todo = todo[~ok[todo]]
+    if len(todo) and angle_tol < HALF_ANGLE:  # a free cone proves most of the rest
+        proved = _cone_proves(points[todo], edge_ids[todo], a, b, atol)
+        ok[todo] = proved
+        # the exact arcs decide the others and check the first proved sample: every
+        # call with samples off the hull runs them (the same compiled kernels whatever
+        # the cone proves, so numba's cache, and the first-compile notice, do not
+        # depend on the contour)
+        exact = ~proved
+        exact[np.argmax(proved)] = True
+        todo = todo[exact]
     if len(todo):
         ok[todo] = free_angle(loops, points[todo], edge_ids[todo], chunk) > angle_tol
     return ok

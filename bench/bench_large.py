@@ -10,9 +10,10 @@ largest worker, and the 2D coverage, precision and W3 soundness.
 
 With ``--before REV`` the same runs are made first with the files of commit
 ``REV`` (``git archive`` into a temporary directory, run from there), side
-by side, and the table adds the speed-up and whether both gave the same
-metrics (timing fields aside). Each checkout senses a small slice once
-before timing, so compiled kernels are loaded from their cache, not built.
+by side, and the table adds their wall and CPU seconds, the speed-up and whether
+both wrote the same ``metrics.json`` and ``sensing.json`` (timing fields aside).
+Each checkout senses a small slice once before timing, so compiled kernels are
+loaded from their cache, not built.
 
     python -m bench.bench_large [--meshes mujoco_spot.ply,trimesh_fandisk.obj]
                                 [--slices 16,32,64] [--jobs 2] [--before REV]
@@ -66,17 +67,19 @@ def run(root: Path, mesh: Path, slices: int, jobs: int, out: Path) -> dict:
         raise SystemExit(f"recon3d run failed ({root}):\n{proc.stderr[-2000:]}")
     mem = json.loads(proc.stdout.strip().splitlines()[-1])
     metrics = json.loads((out / "metrics.json").read_text())
+    sensing = json.loads((out / "sensing.json").read_text())
     cpu = (after.children_user - before.children_user) + (after.children_system -
                                                           before.children_system)
     return dict(wall=wall, cpu=cpu, main_mib=mem["main_mib"], worker_mib=mem["worker_mib"],
-                metrics=metrics)
+                metrics=metrics, sensing=sensing)
 
 
 def _same(a: dict, b: dict) -> bool:
+    """``metrics.json`` and ``sensing.json`` of two runs equal, timing fields aside."""
     sys.path.insert(0, str(ROOT))
     from recon3d.io import without_timing
 
-    return without_timing(a) == without_timing(b)
+    return all(without_timing(a[k]) == without_timing(b[k]) for k in ("metrics", "sensing"))
 
 
 def main(argv=None) -> int:
@@ -106,7 +109,7 @@ def main(argv=None) -> int:
             run(root, files[0][1], 4, 1, tmp / "warm")
         print(f"{'mesh':22s} {'faces':>7s} {'slices':>6s} {'wall s':>7s} {'cpu s':>7s} "
               f"{'wall/slice':>10s} {'MiB main/worker':>16s} {'coverage':>8s} {'prec.':>6s} "
-              f"{'W3 sound':>8s}" + ("  before s  speed-up  same" if args.before else ""),
+              f"{'W3 sound':>8s}" + ("  before s  cpu s  speed-up  same" if args.before else ""),
               flush=True)
         for name, path, faces in files:
             for n in counts:
@@ -118,8 +121,8 @@ def main(argv=None) -> int:
                         f"{t['coverage']:8.4f} {t['precision']:6.4f} {t['w3_soundness']:8.4f}")
                 if args.before:
                     b = res["before"]
-                    line += (f"  {b['wall']:8.1f} {b['wall'] / a['wall']:8.2f}x  "
-                             f"{'yes' if _same(b['metrics'], a['metrics']) else 'NO'}")
+                    line += (f"  {b['wall']:8.1f} {b['cpu']:6.1f} {b['wall'] / a['wall']:8.2f}x  "
+                             f"{'yes' if _same(b, a) else 'NO'}")
                 print(line, flush=True)
     return 0
 

@@ -42,6 +42,7 @@ import shapely
 from core2d.resolution import Resolution
 from core2d.result import SliceResult
 
+from .nearest import segment_distances
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
 
 __all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs"]
@@ -170,18 +171,16 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     samp, reach = reachable_samples(loops, spacing) if samples is None else samples
     w = samp.lengths
     a, b, _ = contour_edges(loops)
-    true_tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
 
     # detected geometry: W1 polylines and W2 segments
     w1a, w1b = _segments(result.w1)
     w2a, w2b = _segments(result.w2)
     da, db = np.concatenate([w1a, w2a]), np.concatenate([w1b, w2b])
     if len(da):
-        det_tree = shapely.STRtree(shapely.linestrings(np.stack([da, db], axis=1)))
-        _, d_true = _nearest(det_tree, samp.points)
+        d_true = segment_distances(samp.points, da, db)
         seg, frac, dl = subdivide(da, db, spacing)
         pts = np.concatenate([da[seg] + frac[:, None] * (db - da)[seg], da, db])
-        _, d_det = _nearest(true_tree, pts)
+        d_det = segment_distances(pts, a, b)
         d_det_pieces = d_det[: len(seg)]
     else:
         d_true = np.full(len(w), np.inf)

@@ -39,6 +39,8 @@ import shapely
 
 from core2d.visibility import free_gaps
 
+from .free_ray import HALF_ANGLE, normal_cone_free
+
 __all__ = [
     "ContourSamples",
     "as_loops",
@@ -218,9 +220,11 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     """(m,) bool: some ray from the point to infinity crosses no contour edge.
 
     Points on the convex hull boundary are accepted without the full test
-    (the outward normal of a supporting line is free). Elsewhere this is
+    (the outward normal of a supporting line is free), and so are points with
+    a free cone of directions (:mod:`core2d.truth.free_ray`: a gap of at least
+    2e-5 rad, used while ``angle_tol`` is below 1e-5). Elsewhere this is
     ``free_angle(...) > angle_tol``: grazing rays and measure-zero gaps are
-    blocked. Hole loops come out unreachable because every ray from them
+    blocked. The answers are those of the exact test alone. Hole loops come out unreachable because every ray from them
     must cross their outer loop.
 
     Examples
@@ -238,9 +242,35 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     hull = shapely.convex_hull(shapely.multipoints(a)).boundary
     ok = shapely.distance(shapely.points(points), hull) <= atol
     todo = np.flatnonzero(~ok)
+    if len(todo) and angle_tol < HALF_ANGLE:  # a free cone proves most of the rest
+        proved = _cone_proves(points[todo], edge_ids[todo], a, b, atol)
+        ok[todo] = proved
+        # the exact arcs decide the others and check the first proved sample: every
+        # call with samples off the hull runs them (the same compiled kernels whatever
+        # the cone proves, so numba's cache, and the first-compile notice, do not
+        # depend on the contour)
+        exact = ~proved
+        exact[np.argmax(proved)] = True
+        todo = todo[exact]
     if len(todo):
         ok[todo] = free_angle(loops, points[todo], edge_ids[todo], chunk) > angle_tol
     return ok
+
+
+def _cone_proves(p, own, a, b, atol) -> np.ndarray:
+    """(c,) bool: points inside their edge whose outward normal cone is free
+    (:func:`core2d.truth.free_ray.normal_cone_free`, margin 1e-9 of the
+    coordinates' size): reachable for certain."""
+    ea, eb = a[own], b[own]
+    ulen = np.hypot(*(eb - ea).T)
+    inner = (np.hypot(*(p - ea).T) > atol) & (np.hypot(*(p - eb).T) > atol) & (ulen > 0)
+    out = np.zeros(len(p), dtype=bool)
+    if inner.any():
+        tangents = (eb - ea)[inner] / ulen[inner, None]
+        margin = 1e-9 * max(float(np.ptp(a, axis=0).max()), float(np.abs(a).max()), 1e-300)
+        center = 0.5 * (a.min(axis=0) + a.max(axis=0))
+        out[inner] = normal_cone_free(p[inner], tangents, a, b, own[inner], margin, center)
+    return out
 
 
 def reachable_samples(loops, spacing: float, **kwargs) -> tuple[ContourSamples, np.ndarray]:

@@ -18,13 +18,14 @@ import logging
 from dataclasses import dataclass, replace
 
 import numpy as np
-import shapely
 import trimesh
+from threadpoolctl import ThreadpoolController
 
 import core2d
 import slicer
 from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
+from core2d.truth.nearest import polyline_segments, segment_distances
 from core2d.truth.reachability import reachable_samples
 from recon3d.io.documents import slice_document
 from recon3d.io.motions import slice_rows
@@ -110,17 +111,7 @@ def no_reference_metrics(result, settings: SenseSettings) -> dict:
 
 def _covered(points, result, tol) -> np.ndarray:
     """(m,) bool: within ``tol`` of the W1 polylines and W2 segments."""
-    parts = [np.asarray(p, dtype=np.float64).reshape(-1, 2) for p in (*result.w1, *result.w2)]
-    parts = [p for p in parts if len(p) >= 2]
-    if not parts or len(points) == 0:
-        return np.zeros(len(points), dtype=bool)
-    idx = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
-    tree = shapely.STRtree(shapely.linestrings(np.concatenate(parts), indices=idx))
-    hit, dist = tree.query_nearest(shapely.points(points), return_distance=True,
-                                   all_matches=False)
-    out = np.zeros(len(points), dtype=bool)
-    out[hit[0]] = dist <= tol
-    return out
+    return segment_distances(points, *polyline_segments((*result.w1, *result.w2))) <= tol
 
 
 class WorkerState:
@@ -135,6 +126,7 @@ class WorkerState:
     def __init__(self, settings: SenseSettings, families: list):
         self.settings = settings
         self.families = families
+        self._blas = None  # threadpoolctl's view of this process's BLAS, made on first use
 
     @classmethod
     def rebuild(cls, vertices, faces, settings: SenseSettings) -> WorkerState:
@@ -149,11 +141,20 @@ class WorkerState:
 
         The returned SliceRun has ``slice=None`` (the parent holds the slices), its rows
         of ``motions.csv`` (``motion_rows``) and its entry of ``sensing.json``
-        (``document``), both made here, beside the other workers."""
-        srun = self._sense(family, index, eps)
-        cut = self.families[family][index]
-        srun.motion_rows = slice_rows(srun, cut.plane)
-        srun.document = slice_document(srun, cut)
+        (``document``), both made here, beside the other workers.
+
+        BLAS runs one thread meanwhile (restored after): a slice's arrays are small, and
+        OpenBLAS's threads, idle-spinning beside the other workers, cost more CPU than
+        they save (measured: cutting the mesh at a plane, 22 ms of CPU with two
+        threads, 1.4 ms with one). Outputs compared identical on the built-in scenes
+        and the large mesh (``bench.compare_commits``, ``bench.bench_large --before``)."""
+        if self._blas is None:
+            self._blas = ThreadpoolController()
+        with self._blas.limit(limits=1, user_api="blas"):
+            srun = self._sense(family, index, eps)
+            cut = self.families[family][index]
+            srun.motion_rows = slice_rows(srun, cut.plane)
+            srun.document = slice_document(srun, cut)
         return srun
 
     def _sense(self, family: int, index: int, eps: float | None) -> SliceRun:

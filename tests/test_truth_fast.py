@@ -1,0 +1,195 @@
+"""The ground truth's fast paths answer as the code they replace, bit for bit.
+
+* :func:`core2d.truth.nearest.segment_distances` against shapely's
+  ``STRtree.query_nearest`` distances (GEOS), on random segments and real slices;
+* :func:`core2d.truth.reachability.reachable` (a free cone proves most points,
+  :mod:`core2d.truth.free_ray`) against the exact arcs alone, on real slices of
+  built-in scenes and random polygons with holes and islands.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import meshes
+import slicer
+from core2d.truth import reachability as R
+from core2d.truth.free_ray import normal_cone_free
+from core2d.truth.nearest import polyline_segments, segment_distances
+
+try:
+    from polygen import keyhole, polygons_with_holes, polygons_with_islands, slotted_box
+except ImportError:  # tests/ imported as a package
+    from tests.polygen import keyhole, polygons_with_holes, polygons_with_islands, slotted_box
+
+SETTINGS = dict(deadline=None, derandomize=True, max_examples=40,
+                suppress_health_check=[HealthCheck.too_slow])
+SCENES = ("comb", "cup_handle", "knurled_pocket", "fig18_overhangs", "twin_posts")
+
+
+def geos_distances(points, a, b) -> np.ndarray:
+    """The replaced code: nearest-segment distance by shapely's STRtree (inf: no segment)."""
+    tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+    idx, dist = tree.query_nearest(shapely.points(points), all_matches=False,
+                                   return_distance=True)
+    out = np.full(len(points), np.inf)
+    out[idx[0]] = dist
+    return out
+
+
+def exact_reachable(loops, points, edge_ids, angle_tol=1e-9) -> np.ndarray:
+    """The replaced code: on the hull, or the exact arcs leave a gap > angle_tol."""
+    a, b, _ = R.contour_edges(loops)
+    atol = 1e-9 * max(float(np.ptp(a, axis=0).max()), 1e-300)
+    hull = shapely.convex_hull(shapely.multipoints(a)).boundary
+    ok = shapely.distance(shapely.points(points), hull) <= atol
+    todo = np.flatnonzero(~ok)
+    ok[todo] = R.free_angle(loops, points[todo], edge_ids[todo]) > angle_tol
+    return ok
+
+
+def real_slices(count=5):
+    """(scene, loops) of the closed sections of a few built-in scenes."""
+    out = []
+    for name in SCENES:
+        for cut in slicer.slice_mesh(meshes.load(name), axis="z", count=count):
+            if cut.loops and not cut.open_chains:
+                out.append((name, [np.asarray(lp) for lp in cut.loops]))
+    return out
+
+
+@pytest.fixture(scope="module")
+def slices():
+    return real_slices()
+
+
+# --- nearest-segment distances --------------------------------------------------------------
+
+@pytest.mark.parametrize("seed", range(40))
+def test_segment_distances_are_geos_bits_on_random_segments(seed):
+    rng = np.random.default_rng(seed)
+    n, m = int(rng.integers(1, 400)), int(rng.integers(1, 400))
+    scale = 10.0 ** rng.uniform(-3, 3)
+    off = rng.uniform(-1e3, 1e3, 2) * (seed % 2)  # far from the origin on odd seeds
+    a = rng.normal(size=(n, 2)) * scale + off
+    b = a + rng.normal(size=(n, 2)) * scale * 10.0 ** rng.uniform(-4, 0.5)
+    zero = rng.random(n) < 0.05
+    b[zero] = a[zero]  # zero-length segments: points
+    p = rng.normal(size=(m, 2)) * scale * rng.uniform(0.1, 5.0) + off
+    k = m // 3
+    p[:k] = a[rng.integers(0, n, k)] + rng.normal(size=(k, 2)) * scale * 1e-6  # near vertices
+    got = segment_distances(p, a, b)
+    assert got.shape == (m,)
+    assert np.array_equal(got, geos_distances(p, a, b))
+
+
+def test_segment_distances_are_geos_bits_on_real_slices(slices):
+    """Samples of each slice against the edges of the next (the true-to-detected shape of
+    the metrics: near, crossing, far), and the edges' pieces against their own slice."""
+    for (_, loops), (_, other) in zip(slices, slices[1:] + slices[:1]):
+        samp = R.sample_contour(loops, 0.01 * float(np.ptp(np.concatenate(loops), axis=0).max()))
+        a, b, _ = R.contour_edges(other)
+        assert np.array_equal(segment_distances(samp.points, a, b),
+                              geos_distances(samp.points, a, b))
+        a, b, _ = R.contour_edges(loops)
+        mids = 0.5 * (a + b) + 1e-3 * (b - a)[:, ::-1]
+        assert np.array_equal(segment_distances(mids, a, b), geos_distances(mids, a, b))
+
+
+def test_segment_distances_without_segments_or_points():
+    assert np.array_equal(segment_distances(np.zeros((3, 2)), np.zeros((0, 2)), np.zeros((0, 2))),
+                          np.full(3, np.inf))
+    assert segment_distances(np.zeros((0, 2)), np.ones((2, 2)), np.ones((2, 2))).shape == (0,)
+
+
+def test_polyline_segments_skip_lone_vertices():
+    a, b = polyline_segments([np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 2.0]]),
+                              np.array([[5.0, 5.0]])])
+    assert a.tolist() == [[0.0, 0.0], [1.0, 0.0]]
+    assert b.tolist() == [[1.0, 0.0], [1.0, 2.0]]
+    assert polyline_segments([])[0].shape == (0, 2)
+
+
+# --- reachability: the free cone --------------------------------------------------------------
+
+def test_reachable_is_the_exact_test_on_real_slices(slices, monkeypatch):
+    """Same answers; and the cone proves most samples (the exact arcs get few)."""
+    asked = []
+    exact = R.free_angle
+
+    def counting(loops, points, *args, **kwargs):
+        asked.append(len(points))
+        return exact(loops, points, *args, **kwargs)
+
+    total = 0
+    for name, loops in slices:
+        spacing = 0.005 * float(np.ptp(np.concatenate(loops), axis=0).max())
+        samp = R.sample_contour(loops, spacing)
+        want = exact_reachable(loops, samp.points, samp.edge)
+        monkeypatch.setattr(R, "free_angle", counting)
+        got = R.reachable(loops, samp.points, samp.edge)
+        monkeypatch.setattr(R, "free_angle", exact)
+        assert np.array_equal(got, want), name
+        total += len(samp.points)
+    assert sum(asked) < 0.25 * total  # the exact arcs for a quarter of the samples at most
+
+
+def test_the_exact_arcs_run_whatever_the_cone_proves(monkeypatch):
+    """An L-shaped section: every sample reachable, those of the inner corner's walls off
+    the hull and proved by the cone; the exact arcs still check one of them (so a run
+    compiles the same kernels on any contour: the first-compile notice depends on it)."""
+    loops = [np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 4.0], [0.0, 4.0]])]
+    samp = R.sample_contour(loops, 0.1)
+    asked = []
+    exact = R.free_angle
+    monkeypatch.setattr(R, "free_angle",
+                        lambda lp, pts, *a, **k: asked.append(len(pts)) or exact(lp, pts, *a, **k))
+    assert R.reachable(loops, samp.points, samp.edge).all()
+    assert asked == [1]
+
+
+def test_cone_never_proves_an_unreachable_point(slices):
+    """Wherever the exact test says unreachable, the cone proves nothing (slots, holes)."""
+    cases = [lp for _, lp in slices] + [keyhole(2.0), slotted_box(1.0, 6.0), slotted_box(0.2, 3.0)]
+    blocked = 0
+    for loops in cases:
+        samp = R.sample_contour(loops, 0.003 * float(np.ptp(np.concatenate(loops), axis=0).max()))
+        ok = exact_reachable(loops, samp.points, samp.edge)
+        a, b, _ = R.contour_edges(loops)
+        own = samp.edge[~ok]
+        t = (b - a)[own] / np.hypot(*(b - a)[own].T)[:, None]
+        proved = normal_cone_free(samp.points[~ok], t, a, b, own, 1e-9, center=a.mean(axis=0))
+        assert not proved.any()
+        blocked += int((~ok).sum())
+    assert blocked > 100  # the cases do have unreachable samples
+
+
+@settings(**SETTINGS)
+@given(loops=st.one_of(polygons_with_holes(), polygons_with_islands()))
+def test_reachable_is_the_exact_test_with_holes_and_islands(loops):
+    samp = R.sample_contour(loops, 0.25)
+    assert np.array_equal(R.reachable(loops, samp.points, samp.edge),
+                          exact_reachable(loops, samp.points, samp.edge))
+
+
+def test_segment_distances_with_non_finite_input():
+    """Non-finite coordinates (one cell holds every segment): finite points get their
+    distance to the finite segments, a NaN point inf."""
+    a = np.array([[0.0, 0.0], [np.nan, 1.0], [5.0, 5.0]])
+    b = np.array([[1.0, 0.0], [2.0, 2.0], [6.0, 5.0]])
+    p = np.array([[0.5, 2.0], [5.5, 4.0], [np.nan, 0.0]])
+    got = segment_distances(p, a, b)
+    assert got[:2].tolist() == [2.0, 1.0]
+    assert got[2] == np.inf
+
+
+def test_a_wide_angle_tol_skips_the_cone():
+    """The cone proves a gap of 2e-5 rad only: a larger angle_tol asks the arcs alone."""
+    loops = slotted_box(1.0, 6.0)
+    samp = R.sample_contour(loops, 0.1)
+    for tol in (1e-9, 0.3, 1.0):
+        assert np.array_equal(R.reachable(loops, samp.points, samp.edge, angle_tol=tol),
+                              exact_reachable(loops, samp.points, samp.edge, angle_tol=tol))

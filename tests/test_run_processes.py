@@ -121,6 +121,26 @@ def test_ctrl_c_to_the_whole_process_group_is_one_line(tmp_path):
     assert not out.exists()
 
 
+def test_ctrl_c_during_the_first_compile_does_not_wait_for_it(tmp_path):
+    """On an empty numba cache the main process compiles while a side child compiles the
+    distance kernels: a Ctrl-C then ends the run at once, stopping that child before it
+    saves them (waiting for it would leave them in the cache)."""
+    cache, out = tmp_path / "numba", tmp_path / "out"
+    env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow",
+               NUMBA_CACHE_DIR=str(cache))
+    proc = subprocess.Popen([sys.executable, "-m", "recon3d", *LONG_RUN, "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            start_new_session=True)
+    side = _wait_for_workers(proc, count=1)  # the compile child: no worker before the compile
+    os.killpg(proc.pid, signal.SIGINT)
+    code, _, err = _finish(proc)
+    assert code == 128 + signal.SIGINT, err
+    assert err.strip().splitlines()[-1] == "recon3d: interrupted (SIGINT)", err
+    _assert_gone(side)
+    assert not list(cache.rglob("closest._query*")), "the run waited for the side compile"
+    assert not out.exists()
+
+
 def test_a_signal_leaves_an_existing_directory_as_it_was(tmp_path):
     out = tmp_path / "out"
     out.mkdir()

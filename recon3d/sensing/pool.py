@@ -333,19 +333,23 @@ def _compile_here(families: list, settings: SenseSettings, tasks: list, out: lis
     Forked workers inherit the compiled kernels. Without this, every worker compiles the
     same kernels at the same time (the compile paid twice in CPU, on cores that the machine
     may not have free). A child forked meanwhile compiles the point-to-mesh distances that
-    the coloured ground truth uses after the sensing, on the core this process leaves idle.
+    the scores and the coloured ground truth use after the sensing, on the core this process
+    leaves idle (stopped if the sensing here raises: a Ctrl-C does not wait for it).
     :func:`cold_kernels` reads numba's cache indexes only; other backends compile a subset
     of the kernels and are not asked about.
     """
     if settings.backend != "embree" or len(tasks) < 2 or not cold_kernels():
         return 0
-    # the other core compiles the distances of the coloured ground truth meanwhile
+    # the other core compiles the distances of the scores and coloured ground truth meanwhile
     side = Side(compile_distances) if can_fork() else None
     try:
         _sense_here(settings, families, tasks[:1], out, progress)
-    finally:
+    except BaseException:  # a Ctrl-C or an error does not wait for that compile
         if side is not None:
-            _finish(side)
+            side.stop()
+        raise
+    if side is not None:
+        _finish(side)
     return 1
 
 

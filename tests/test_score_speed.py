@@ -56,7 +56,9 @@ def test_compile_kernels_compiles_what_a_run_calls():
     call a run makes, whatever the dtypes and memory order of its arrays, uses those
     signatures and compiles nothing more."""
     compile_kernels()
-    kernels = (closest._query, closest._build, closest._tri_dist2, closest._box_dist2)
+    # the entry points (their callees are compiled into them, or not at all when they load
+    # from numba's cache)
+    kernels = (closest._query, closest._build)
     compiled = [list(k.signatures) for k in kernels]
     assert all(compiled)
     mesh = trimesh.creation.icosphere(subdivisions=2)

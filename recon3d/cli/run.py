@@ -91,8 +91,9 @@ def _run(args, config, mesh, name, notes):
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     for note in notes:
         warn(note)
-    # the first run on a machine compiles ~20 s before its first slice (the kernels asked
-    # about are the default Embree backend's; other backends compile only some of them)
+    # the first run on a machine compiles about 10 s before its first slice, in the main
+    # process (recon3d.sensing.pool._compile_here; the kernels asked about are the default
+    # Embree backend's; other backends compile only some of them)
     if not args.quiet and config.backend == "embree" and cold_kernels():
         print(COMPILE_NOTICE, file=sys.stderr, flush=True)
     per_axis = config.max_slices if config.slices == "auto" else config.slices

@@ -14,8 +14,15 @@ __all__ = ["Contact", "Reading", "TIP", "LEFT", "RIGHT"]
 
 TIP, LEFT, RIGHT = "tip", "left", "right"
 
+_NO_TRACE = np.zeros((0, 2))
+_NO_TRACE.flags.writeable = False  # one empty (0, 2) trace shared by every reading
 
-@dataclass(frozen=True)
+
+def _no_trace() -> np.ndarray:
+    return _NO_TRACE
+
+
+@dataclass(frozen=True, slots=True)
 class Contact:
     """One contact sensed by the distributed sensing elements.
 
@@ -29,7 +36,7 @@ class Contact:
     along: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Reading:
     """What the joint, torque and tactile sensors report after a motion.
 
@@ -56,7 +63,7 @@ class Reading:
     blocked_cw: bool = False
     blocked_ccw: bool = False
     event: str = "done"
-    trace: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    trace: np.ndarray = field(default_factory=_no_trace)
     before_joint: np.ndarray | None = None
     before_direction: np.ndarray | None = None
     angle: float = 0.0

@@ -119,3 +119,18 @@ def test_torque_sensor_one_way_on_a_slope():
     surface: ccw blocked only."""
     _, r = _pressed_on(SLOPE, 30.0)
     assert r.blocked_ccw and not r.blocked_cw
+
+
+def test_readings_are_frozen_slotted_and_share_one_read_only_empty_trace():
+    from dataclasses import FrozenInstanceError
+
+    p = _probe()
+    p.approach([20.0, 60.0], [0.0, -1.0])
+    a, b = p.insert(), p.sense()
+    assert a.trace is b.trace and a.trace.shape == (0, 2)
+    with pytest.raises(ValueError):  # shared: nobody can grow it in place
+        a.trace.resize((1, 2))
+    assert not a.trace.flags.writeable
+    with pytest.raises(FrozenInstanceError):
+        a.event = "done"
+    assert not hasattr(a, "__dict__") and not hasattr(a.tip_contact, "__dict__")

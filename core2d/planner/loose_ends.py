@@ -41,11 +41,15 @@ def _onward(points, p, e, r) -> bool:
 
 
 def _meets(known, j, k, q):
-    """The point of segment ``k`` of piece ``j`` nearest to ``q``."""
+    """The point of segment ``k`` of piece ``j`` nearest to ``q`` (2,): the
+    projection clipped to the segment, in float arithmetic that rounds as
+    numpy's ``(q - a) @ ab / (ab @ ab)`` does on (2,) vectors."""
     a, b = known.pieces[j][k], known.pieces[j][k + 1]
-    ab = b - a
-    t = float(np.clip((q - a) @ ab / max(float(ab @ ab), 1e-300), 0.0, 1.0))
-    return a + t * ab
+    ax, ay = float(a[0]), float(a[1])
+    abx, aby = float(b[0]) - ax, float(b[1]) - ay
+    t = ((float(q[0]) - ax) * abx + (float(q[1]) - ay) * aby) / max(abx * abx + aby * aby, 1e-300)
+    t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)  # np.clip's order; nan stays nan
+    return np.array((ax + t * abx, ay + t * aby))
 
 
 def _end_chain(known, i):
@@ -64,8 +68,10 @@ def _end_chain(known, i):
     seen, last, far = {i}, i, 0.0
     while todo:
         j, k, q = todo.pop()
+        if j in seen:  # (no need to place it)
+            continue
         p = _meets(known, j, k, q)
-        if j in seen or np.hypot(*(p - e)) > 2 * r:
+        if np.hypot(*(p - e)) > 2 * r:
             continue
         seen.add(j)
         if _onward(known.pieces[j][k + 1:], p, e, r):
@@ -78,18 +84,22 @@ def _end_chain(known, i):
     return last
 
 
-def _start_chain(known, i):
+def _start_chain(known, i, passing):
     """Follow the recorded contour back from the first point s of piece
     ``i`` likewise: None when it leads in from beyond ``join``, else the
     piece of the chain whose first point lies farthest from s (where the
-    recorded contour begins)."""
+    recorded contour begins). ``passing(m)`` is ``known.passing`` at the
+    first point of piece m within ``join`` (the same for every i)."""
     s, r = known.pieces[i][0], known.join
-    seen, todo, first, far = {i}, [known.pieces[i][0]], i, 0.0
+    seen, todo, first, far = {i}, [i], i, 0.0
     while todo:
-        q = todo.pop()
-        for j, k in known.passing(q, r):
+        m = todo.pop()
+        q = known.pieces[m][0]
+        for j, k in passing(m):
+            if j in seen:  # (no need to place it)
+                continue
             p = _meets(known, j, k, q)
-            if j in seen or np.hypot(*(p - s)) > 2 * r:
+            if np.hypot(*(p - s)) > 2 * r:
                 continue
             seen.add(j)
             if _onward(known.pieces[j][:k + 1], p, s, r):
@@ -97,7 +107,7 @@ def _start_chain(known, i):
             d = float(np.hypot(*(known.pieces[j][0] - s)))
             if d > max(far, float(np.hypot(*(p - s)))):  # begins farther back
                 first, far = j, d
-            todo.append(known.pieces[j][0])  # j starts there too: what leads into j?
+            todo.append(j)  # j starts there too: what leads into j?
     return first
 
 
@@ -119,12 +129,18 @@ def recorded_stops(known):
         -- the last point of the piece where the recorded contour stops
         (the first of the one where it begins) and its posture.
     """
-    ends, starts = [], []
+    ends, starts, found = [], [], {}
+
+    def passing(m):  # who passes the first point of piece m: asked again by later chains
+        if m not in found:
+            found[m] = known.passing(known.pieces[m][0], known.join)
+        return found[m]
+
     for i in range(len(known.pieces)):
         j = _end_chain(known, i)
         if j is not None:
             ends.append((known.pieces[j][-1], known.poses[j][1], j))
-        j = _start_chain(known, i)
+        j = _start_chain(known, i, passing)
         if j is not None:
             starts.append((known.pieces[j][0], known.poses[j][0], j))
     return _one_each(ends, known.join), _one_each(starts, known.join)

@@ -81,6 +81,7 @@ class Probe:
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
         self.sensor = Sensor(model, self.length)
+        self._ideal = model.ideal  # the paper's sensors: readings as simulated
         self.friction = float(friction)
         if not self.friction >= 0:
             raise ValueError(f"friction must be >= 0, got {friction!r}")
@@ -143,38 +144,28 @@ class Probe:
         it and both rotations are free. Without a tip contact only contacts
         on the probe itself (distance <= L) block.
         """
-        alpha = self.tol / self.length
-        th, L, tol = self.theta, self.length, self.tol
-        c, sn = math.cos(th), math.sin(th)
-        jx, jy = float(self.joint[0]), float(self.joint[1])
-        d, p = self.engine.sense_rays(jx, jy, th, alpha, L, tol)
-        t = np.array((c, sn))
-        d = d.tolist()
-        tip_touch = d[2] < math.inf
-        reach = L + (d[2] - 1e-3 * self.tol if tip_touch else 0.0)
-        contacts = []
-        if tip_touch:
-            contacts.append(Contact(p[2], TIP, L))
-        for k, face in ((0, RIGHT), (1, LEFT)):
-            if d[k] <= L:
-                f = TIP if L - d[k] <= self.tip_zone else face
-                if not any(magnitude(q.point - p[k]) <= self.tip_zone for q in contacts):
-                    contacts.append(Contact(p[k], f, d[k]))
+        th, L, tol, zone = self.theta, self.length, self.tol, self.tip_zone
+        joint = self.joint
+        d, p = self.engine.sense_rays(float(joint[0]), float(joint[1]), th, tol / L, L, tol)
+        d0, d1, d2 = d.tolist()
+        tip_touch = d2 < math.inf
+        reach = L + (d2 - 1e-3 * tol if tip_touch else 0.0)
+        contacts = [Contact(p[2], TIP, L)] if tip_touch else []
+        for dk, k, face in ((d0, 0, RIGHT), (d1, 1, LEFT)):
+            if dk <= L:
+                pk = p[k]
+                if not any(magnitude(q.point - pk) <= zone for q in contacts):
+                    contacts.append(Contact(pk, TIP if L - dk <= zone else face, dk))
         primary = extra.pop("primary", None)
         if primary is not None:
             contacts = [primary] + [
-                c for c in contacts if magnitude(c.point - primary.point) > self.tip_zone
+                c for c in contacts if magnitude(c.point - primary.point) > zone
             ]
-        reading = Reading(
-            joint=self.joint.copy(),
-            direction=t,
-            contacts=tuple(contacts),
-            blocked_ccw=d[0] <= reach,
-            blocked_cw=d[1] <= reach,
-            event=event,
-            **extra,
-        )
-        return reading if exact else self.sensor.reading(reading, (reach - d[0], reach - d[1]))
+        reading = Reading(joint.copy(), np.array((math.cos(th), math.sin(th))), tuple(contacts),
+                          blocked_cw=d1 <= reach, blocked_ccw=d0 <= reach, event=event, **extra)
+        if exact or self._ideal:
+            return reading
+        return self.sensor.reading(reading, (reach - d0, reach - d1))
 
     # --------------------------------------------------------------- motions
     def _motion(self):

@@ -119,25 +119,25 @@ class Recorder:
         rows, n, L = self._rows, len(self._rows), self.length
         if not n:
             return MotionLog()
-        kind, phase, area = (np.array([r[k] for r in rows]) for k in range(3))
-        before, after = (np.column_stack([np.array([r[k] for r in rows], dtype=np.float64),
-                                          np.array([r[k + 1] for r in rows], dtype=np.float64)])
+        cols = tuple(zip(*rows))  # one tuple per field of the rows
+        kind, phase, area = (np.array(cols[k]) for k in range(3))
+        before, after = (np.column_stack([np.array(cols[k], dtype=np.float64),
+                                          np.array(cols[k + 1], dtype=np.float64)])
                          for k in (3, 5))
         tip = after[:, :2] + L * np.stack([np.cos(after[:, 2]), np.sin(after[:, 2])], axis=1)
-        none = (math.nan, math.nan)
+        none, trace = (math.nan, math.nan), _KIND["trace"]
         tip_c, counts, blocked = [], [], []
         events, others, start = [], [], [0]
-        for row in rows:  # plain lists, one array each at the end
-            reading = row[7]
-            c = reading.tip_contact
+        for k, reading in zip(cols[0], cols[7]):  # plain lists, one array each at the end
+            contacts, c = reading.contacts, reading.tip_contact
             tip_c.append(none if c is None else c.point)
-            counts.append(len(reading.contacts))
+            counts.append(len(contacts))
             blocked.append((reading.blocked_ccw, reading.blocked_cw))
-            rest = [q.point for q in reading.contacts if q is not c]
+            rest = [q.point for q in contacts if q is not c]
             others.extend(rest)
             start.append(start[-1] + len(rest))
             ev = reading.event
-            events.append(TRACE_CASES.get(ev, ev) if row[0] == _KIND["trace"] else ev)
+            events.append(TRACE_CASES.get(ev, ev) if k == trace else ev)
         return MotionLog(
             kind=kind.astype(np.int8), phase=phase.astype(np.int8), area=area.astype(np.int32),
             event=np.array(events, dtype="<U12"), before=before, after=after, tip=tip,
@@ -145,4 +145,4 @@ class Recorder:
             contacts=np.array(counts, dtype=np.int16), other_start=np.array(start, dtype=np.int64),
             other=np.array(others, dtype=np.float64).reshape(-1, 2),
             blocked=np.array(blocked, dtype=bool).reshape(n, 2),
-            torque=np.array([r[8] for r in rows], dtype=np.int8))
+            torque=np.array(cols[8], dtype=np.int8))

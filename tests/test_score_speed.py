@@ -8,13 +8,15 @@
   side (both directions' points split between two calls, one in a forked child) give the
   very metrics of one call after the other.
 """
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import trimesh
 
 from recon3d.api import _side_by_side
-from recon3d.score import closest
-from recon3d.score.closest import compile_kernels, mesh_distances
+from recon3d.score.closest import mesh_distances
 from recon3d.score import evaluate
 from recon3d.score.evaluate import (ContourCloud, Domain, GroundTruthSamples, one_after_other,
                                     surface_metrics)
@@ -51,21 +53,30 @@ def test_mesh_distances_equal_vtk(k):
     assert np.all(ours[-on:] <= 1e-12)
 
 
+_COMPILE_CHECK = """
+import numpy as np, trimesh
+from recon3d.score import closest
+kernels = (closest._query, closest._build)
+assert not any(k.signatures for k in kernels)  # a fresh process: nothing compiled yet
+closest.compile_kernels()
+compiled = [list(k.signatures) for k in kernels]
+assert all(compiled), compiled
+mesh = trimesh.creation.icosphere(subdivisions=2)
+closest.mesh_distances(np.asfortranarray(mesh.sample(100, seed=1)), mesh.vertices, mesh.faces)
+closest.mesh_distances(mesh.vertices[::2].astype(np.float32),
+                       mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32))
+assert [list(k.signatures) for k in kernels] == compiled
+"""
+
+
 def test_compile_kernels_compiles_what_a_run_calls():
-    """The first run compiles the distances beside the sensing (``compile_kernels``): every
-    call a run makes, whatever the dtypes and memory order of its arrays, uses those
-    signatures and compiles nothing more."""
-    compile_kernels()
-    # the entry points (their callees are compiled into them, or not at all when they load
-    # from numba's cache)
-    kernels = (closest._query, closest._build)
-    compiled = [list(k.signatures) for k in kernels]
-    assert all(compiled)
-    mesh = trimesh.creation.icosphere(subdivisions=2)
-    mesh_distances(np.asfortranarray(mesh.sample(100, seed=1)), mesh.vertices, mesh.faces)
-    mesh_distances(mesh.vertices[::2].astype(np.float32),
-                   mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32))
-    assert [list(k.signatures) for k in kernels] == compiled
+    """The first run compiles the distances beside the sensing (``compile_kernels``): in a
+    fresh process it gives the entry points (their callees are compiled into them, or load
+    inside them from numba's cache) the signatures that every call a run makes uses,
+    whatever the dtypes and memory order of its arrays, so those compile nothing more."""
+    proc = subprocess.run([sys.executable, "-c", _COMPILE_CHECK], capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
 
 
 def test_mesh_distances_hierarchy_prunes_nothing_it_needs():

@@ -174,3 +174,15 @@ def test_the_sweep_runs_slice_counts_above_extent_over_eps():
     row = run_case({"case": "fig17_pocket", "source": "fig17_pocket", "method": "uniform",
                     "slices": 9, "eps_share": 1 / 25})
     assert row["slices"] == 9 and row["fscore_1"] > 0.9 and row["cpu_s"] > 0
+
+
+def test_methods_breaking_at_one_value_each_get_their_own_ring(tmp_path):
+    """Two methods break at the same noise value (one line there would show one
+    colour only): each is marked by a ring at its own score, a crash at its red x."""
+    rows = [dict(_s(v, m, c), coverage_sensor=c, factor="noise")
+            for v, m, c in ((0.0, "m1", 1.0), (0.3, "m1", 0.9), (0.0, "m2", 1.0), (0.3, "m2", 0.6),
+                            (0.0, "m3", 1.0), (0.3, "m3", 0.99))]
+    rows += [_s(1, "m1", 1.0), _s(2, "m1", np.nan, crashed=True)]
+    marks = stability_chart(rows, breaking_points(rows), tmp_path / "s.png")
+    assert sorted(marks) == [("f", "m1", 2, 0.02), ("noise", "m1", 0.3, 0.9),
+                             ("noise", "m2", 0.3, 0.6)]  # m3 holds: no ring

@@ -18,6 +18,8 @@ _NAMES = {"pulling/embree": "pulling (Embree rays)", "pulling/exact": "pulling (
           "paper/embree": "paper: Fig. 16 flow alone", "follow/embree": "follow: pushing follower",
           "pulling/embree 3D": "pulling, whole 3D run (F@1%)"}
 _MARKS = "osD^vPX*"
+_RING = 420
+"""Area (points^2) of the ring around a breaking point: about twice the largest marker's width."""
 _SCORES = {"coverage": "reachable coverage (within eps/2)",
            "coverage_sensor": "coverage within eps/2 + 2 sigma",
            "fscore_1": "F@1% of the 3D surface"}
@@ -25,7 +27,7 @@ _UNITS = {"plane offset": "plane offset above a face and its vertices / diagonal
           "noise": "contact noise sigma / eps", "taxel": "taxel spacing / eps",
           "resolution": "segments per circle (bowl)",
           "eps / edge": "eps / median mesh edge length (bowl)",
-          "islands/holes": "scene (every slice)", "mesh defects": "mesh (whole run)"}
+          "islands/holes": "scene (mean over its z-slices)", "mesh defects": "mesh (whole run)"}
 
 
 def method_label(method: str) -> str:
@@ -68,11 +70,14 @@ def _value_axis(ax, factor, values, cats):
         ax.tick_params(axis="x", labelrotation=30)
 
 
-def stability_chart(rows, breaks, path) -> None:
+def stability_chart(rows, breaks, path) -> list[tuple]:
     """One panel per factor: each method's score (:func:`.stability.score_key`;
     3D runs dashed) against the factor's value; crashes (red x), budget hits
-    (black triangles) and each method's breaking point (dotted line in its colour)."""
+    (black triangles) and each method's breaking point (a dotted ring in its
+    colour around its own point, so methods breaking at one value stay apart).
+    Returns the rings drawn: ``(factor, method, value, score)`` each."""
     plt = libs.pyplot()
+    marks = []
     factors = list(dict.fromkeys(r["factor"] for r in rows))
     methods = list(dict.fromkeys(r["method"] for r in rows))
     style = _style(methods)
@@ -107,7 +112,11 @@ def stability_chart(rows, breaks, path) -> None:
                                color="black", s=50, zorder=5)
             b = next((b for b in breaks if b["factor"] == factor and b["method"] == m), None)
             if b is not None and b["breaks_at"] in pos:
-                ax.axvline(pos[b["breaks_at"]], color=colour, ls=":", lw=1.6)
+                y = _mean(rs, key, b["breaks_at"])
+                y = y if np.isfinite(y) else 0.02  # a crash has no score: at its red x
+                ax.scatter([pos[b["breaks_at"]]], [y], s=_RING, facecolors="none",
+                           edgecolors=[colour], linewidths=2.0, linestyles=":", zorder=6)
+                marks.append((factor, m, b["breaks_at"], y))
         _value_axis(ax, factor, pos.values(), cats)
         ax.set_xlabel(_UNITS.get(factor, "rotation, degrees"))
         ax.set_ylabel(" / ".join(_SCORES[k] for k in sorted(keys)), fontsize=9)
@@ -122,13 +131,15 @@ def stability_chart(rows, breaks, path) -> None:
     handles += [libs.lines().Line2D([], [], ls="none", marker="v", color="black",
                                      label="budget hit"),
                 libs.lines().Line2D([], [], ls="none", marker="x", color="red", label="crash"),
-                libs.lines().Line2D([], [], ls=":", color="grey", label="where it breaks")]
+                libs.lines().Line2D([], [], ls="none", marker="o", ms=_RING ** 0.5, mfc="none",
+                                    mec="grey", mew=2.0, label="where it breaks (ring)")]
     fig.legend(handles=handles, loc="outside lower center", ncol=6, fontsize=10)
     fig.suptitle("Stability: where each method breaks (a crash, its budget of 5000 motions per "
                  "slice hit, or its score 0.05 below the first value's); eps = diagonal / 50 "
                  "(but eps / edge)")
     fig.savefig(path, dpi=100)
     plt.close(fig)
+    return marks
 
 
 def sensor_chart(rows, path, factors=SENSOR_FACTORS) -> None:

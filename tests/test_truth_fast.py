@@ -201,39 +201,16 @@ def test_a_wide_angle_tol_skips_the_cone():
 
 @numba.njit
 def _plain_scan(p, dirs, a, b, own, margin, cos_h, sin_h, out):  # pragma: no cover
-    """The replaced scan: every segment against every candidate cone (the plain loop of
-    the kernel before its boxes; compiled here, not cached)."""
+    """The replaced scan: every segment against every candidate cone, by the kernel's own
+    segment test, without its boxes (compiled here, not cached)."""
     for r in range(p.shape[0]):
-        px, py = p[r, 0], p[r, 1]
         free = False
         for k in range(dirs.shape[1]):
             nx, ny = dirs[r, k, 0], dirs[r, k, 1]
             lx, ly = nx * cos_h - ny * sin_h, nx * sin_h + ny * cos_h
             rx, ry = nx * cos_h + ny * sin_h, -nx * sin_h + ny * cos_h
-            free = True
-            for j in range(a.shape[0]):
-                if j == own[r]:
-                    continue
-                vax, vay = a[j, 0] - px, a[j, 1] - py
-                vbx, vby = b[j, 0] - px, b[j, 1] - py
-                fa = lx * vay - ly * vax - margin
-                fb = lx * vby - ly * vbx - margin
-                ga = rx * vay - ry * vax + margin
-                gb = rx * vby - ry * vbx + margin
-                if (fa > 0.0 and fb > 0.0) or (ga < 0.0 and gb < 0.0):
-                    continue
-                lo, hi = 0.0, 1.0
-                if fa > 0.0:
-                    lo = max(lo, fa / (fa - fb))
-                elif fb > 0.0:
-                    hi = min(hi, fa / (fa - fb))
-                if ga < 0.0:
-                    lo = max(lo, ga / (ga - gb))
-                elif gb < 0.0:
-                    hi = min(hi, ga / (ga - gb))
-                if lo <= hi or not (fa == fa and fb == fb and ga == ga and gb == gb):
-                    free = False
-                    break
+            free = FR._segments_free(lx, ly, rx, ry, p[r, 0], p[r, 1], a, b, 0, a.shape[0],
+                                     own[r], margin)
             if free:
                 break
         out[r] = free

@@ -12,6 +12,7 @@ With ``--before REV`` the same runs are made first with the files of commit
 ``REV`` (``git archive`` into a temporary directory, run from there), side
 by side, and the table adds their wall and CPU seconds, the speed-up and whether
 both wrote the same ``metrics.json`` and ``sensing.json`` (timing fields aside).
+The load average is printed before and after the runs.
 Each checkout senses a small slice once before timing, so compiled kernels are
 loaded from their cache, not built.
 
@@ -107,6 +108,7 @@ def main(argv=None) -> int:
         files = [(name, *subdivided(name, tmp)) for name in names]
         for _, root in roots:  # load (or build) every compiled kernel before timing
             run(root, files[0][1], 4, 1, tmp / "warm")
+        print(f"load average at the start: {_load()}", flush=True)
         print(f"{'mesh':22s} {'faces':>7s} {'slices':>6s} {'wall s':>7s} {'cpu s':>7s} "
               f"{'wall/slice':>10s} {'MiB main/worker':>16s} {'coverage':>8s} {'prec.':>6s} "
               f"{'W3 sound':>8s}" + ("  before s  cpu s  speed-up  same" if args.before else ""),
@@ -124,7 +126,13 @@ def main(argv=None) -> int:
                     line += (f"  {b['wall']:8.1f} {b['cpu']:6.1f} {b['wall'] / a['wall']:8.2f}x  "
                              f"{'yes' if _same(b, a) else 'NO'}")
                 print(line, flush=True)
+        print(f"load average at the end: {_load()}", flush=True)
     return 0
+
+
+def _load() -> str:
+    """The 1, 5 and 15 minute load averages (the runs share the machine with them)."""
+    return " / ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@ sensing workers, the side children (pictures, the coloured ground truth, a score
 distance call) -- appends one line per phase to a log, with its wall interval and its
 CPU seconds (the calling thread's and the whole process's). Printed: the phases in start
 order, grouped by process, with wall offsets from the interpreter's start, and the CPU of
-every process.
+every process; then each sensing worker's idle tail (the wall seconds from the end of its
+last slice to the end of the last slice of any worker).
 
     python -m bench.run_timeline bored_block [--slices 8] [--jobs 2] [--no-png] [--profile]
                                  [--root DIR]
@@ -179,7 +180,22 @@ def main(argv=None) -> int:
             print(f"  {r['t0'] - t0:6.2f} .. {r['t1'] - t0:6.2f}  {r['t1'] - r['t0']:6.2f} s  "
                   f"cpu {r['cpu']:6.2f} (proc {r['pcpu']:6.2f})  {r['thread'][:14]:14s} "
                   f"{r['label']} {r['extra']}")
+    _idle_tails(rows, t0)
     return 0
+
+
+def _idle_tails(rows: list, t0: float) -> None:
+    """Print each sensing worker's idle tail: from the end of its last slice to the end
+    of the last slice of any worker (the pool waits that long for the slowest one)."""
+    ends = {}
+    for r in rows:
+        if r["label"] == "slice" and not r["main"]:
+            ends[r["pid"]] = max(ends.get(r["pid"], 0.0), r["t1"])
+    if len(ends) < 2:
+        return
+    last = max(ends.values())
+    tails = ", ".join(f"pid {pid} {last - t:.2f} s" for pid, t in sorted(ends.items()))
+    print(f"sensing workers' idle tail (last slice ended at {last - t0:.2f} s): {tails}")
 
 
 if __name__ == "__main__":

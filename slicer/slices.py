@@ -95,6 +95,8 @@ class Slice:
             cls = contact_class(backend)
             if backend == "exact":
                 model = cls(self.loops, chains=self.open_chains)
+            elif backend == "embree":  # the mesh's scale, known here
+                model = cls(self.mesh, self.plane, scale=self.scale)
             else:
                 model = cls(self.mesh, self.plane)
             self._backends[backend] = model

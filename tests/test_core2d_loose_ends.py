@@ -142,3 +142,24 @@ def test_meeting_point_rounds_as_numpy():
     for k in range(len(pl) - 1):
         q = pl[k] + rng.normal(0, 2, 2) * np.abs(pl[k + 1] - pl[k]).max()
         assert np.array_equal(loose_ends._meets(known, 0, k, q), _ref_meets(known, 0, k, q))
+
+
+def test_the_answer_is_remembered_while_the_map_stays_the_same(monkeypatch):
+    """The audit asks again about an unchanged map: the walk is not made again; a piece
+    added (a new version of the map) gets a new walk, equal to the plain one."""
+    walks = []
+    real = loose_ends._walk_stops
+    monkeypatch.setattr(loose_ends, "_walk_stops", lambda k: walks.append(1) or real(k))
+    known = _map(3)
+    first = recorded_stops(known)
+    assert recorded_stops(known) is first and len(walks) == 1
+    copy = known.with_pieces([])  # a copy remembers nothing
+    assert recorded_stops(copy) is not first and len(walks) == 2
+    end = known.pieces[0][-1]
+    known.add(end + [[0.0, 0.0], [0.1, 5.0]])  # a new loose end, 5 away
+    ends, starts = recorded_stops(known)
+    assert len(walks) == 3
+    want_ends, want_starts = _ref_stops(known)
+    _same(ends, want_ends)
+    _same(starts, want_starts)
+    assert len(ends) != len(first[0]) or len(starts) != len(first[1])

@@ -8,6 +8,9 @@
 """
 from __future__ import annotations
 
+import math
+
+import numba
 import numpy as np
 import pytest
 import shapely
@@ -17,6 +20,7 @@ from hypothesis import strategies as st
 import meshes
 import slicer
 from core2d.truth import reachability as R
+from core2d.truth import free_ray as FR
 from core2d.truth.free_ray import normal_cone_free
 from core2d.truth.nearest import polyline_segments, segment_distances
 
@@ -193,3 +197,77 @@ def test_a_wide_angle_tol_skips_the_cone():
     for tol in (1e-9, 0.3, 1.0):
         assert np.array_equal(R.reachable(loops, samp.points, samp.edge, angle_tol=tol),
                               exact_reachable(loops, samp.points, samp.edge, angle_tol=tol))
+
+
+@numba.njit
+def _plain_scan(p, dirs, a, b, own, margin, cos_h, sin_h, out):  # pragma: no cover
+    """The replaced scan: every segment against every candidate cone, by the kernel's own
+    segment test, without its boxes (compiled here, not cached)."""
+    for r in range(p.shape[0]):
+        free = False
+        for k in range(dirs.shape[1]):
+            nx, ny = dirs[r, k, 0], dirs[r, k, 1]
+            lx, ly = nx * cos_h - ny * sin_h, nx * sin_h + ny * cos_h
+            rx, ry = nx * cos_h + ny * sin_h, -nx * sin_h + ny * cos_h
+            free = FR._segments_free(lx, ly, rx, ry, p[r, 0], p[r, 1], a, b, 0, a.shape[0],
+                                     own[r], margin)
+            if free:
+                break
+        out[r] = free
+
+
+def _plain_cone_free(p, dirs, a, b, own, margin):
+    out = np.zeros(len(p), dtype=np.bool_)
+    _plain_scan(p, dirs, a, b, own, margin, math.cos(FR.HALF_ANGLE), math.sin(FR.HALF_ANGLE),
+                out)
+    return out
+
+
+def test_the_cone_skips_boxes_as_the_plain_scan_skips_their_segments(slices):
+    """The boxes of consecutive segments change nothing: on real slices (every sample,
+    several margins), on contours with NaN and on one edge, the same answers."""
+    cases = [lp for _, lp in slices] + [keyhole(2.0), slotted_box(0.2, 3.0)]
+    proved = unproved = 0
+    for loops in cases:
+        samp = R.sample_contour(loops, 0.004 * float(np.ptp(np.concatenate(loops), axis=0).max()))
+        a, b, _ = R.contour_edges(loops)
+        own = samp.edge
+        t = (b - a)[own] / np.hypot(*(b - a)[own].T)[:, None]
+        center = a.mean(axis=0)
+        for margin in (1e-9, 1e-3):
+            dirs = FR.candidate_directions(samp.points, t, center)
+            want = _plain_cone_free(samp.points, dirs, a, b, own, margin)
+            got = normal_cone_free(samp.points, t, a, b, own, margin, center=center)
+            assert np.array_equal(got, want)
+            proved, unproved = proved + int(want.sum()), unproved + int((~want).sum())
+    assert proved > 1000 and unproved > 1000
+    a, b, _ = R.contour_edges(slotted_box(1.0, 6.0))
+    p = 0.5 * (a + b)
+    t = (b - a) / np.hypot(*(b - a).T)[:, None]
+    own = np.arange(len(a))
+    a_nan = a.copy()
+    a_nan[3] = np.nan
+    for aa in (a, a_nan, a[:1]):
+        bb, pp, tt, oo = b[:len(aa)], p[:len(aa)], t[:len(aa)], own[:len(aa)]
+        dirs = FR.candidate_directions(pp, tt)
+        assert np.array_equal(normal_cone_free(pp, tt, aa, bb, oo, 1e-9),
+                              _plain_cone_free(pp, dirs, aa, bb, oo, 1e-9))
+
+
+def test_a_box_is_skipped_only_wholly_outside_a_boundary():
+    """Cone along +x from the origin (half-angle 1e-5): a box beside it is skipped, one
+    it crosses, one it reaches within the slack, and one with NaN are not."""
+    c, s = np.cos(FR.HALF_ANGLE), np.sin(FR.HALF_ANGLE)
+    left, right = (c, s), (c, -s)
+
+    def outside(x0, y0, x1, y1, slack=1e-12):
+        return FR._box_outside(*left, *right, x0, y0, x1, y1, 1e-9, slack)
+
+    assert outside(1.0, 1.0, 2.0, 2.0) and outside(1.0, -2.0, 2.0, -1.0)
+    assert not outside(1.0, -1.0, 2.0, 1.0)  # across the cone
+    assert not outside(-2.0, -1.0, -1.0, 1.0)  # behind the apex, across the axis
+    y = (s + 1e-9 + 5e-13) / c  # a box at x = 1 outside by 5e-13: less than the slack
+    assert not outside(1.0, y, 1.0, 1.0 + y) and outside(1.0, y, 1.0, 1.0 + y, slack=1e-13)
+    assert not outside(1.0, np.nan, 2.0, 2.0)
+    lo, hi = FR.chunk_boxes(np.arange(40.0).reshape(20, 2), np.arange(40.0).reshape(20, 2) + 1)
+    assert lo.tolist() == [[0.0, 1.0], [32.0, 33.0]] and hi.tolist() == [[31.0, 32.0], [39.0, 40.0]]

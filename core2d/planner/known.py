@@ -70,6 +70,7 @@ class KnownContour:
         self._hi = np.zeros((0, 2))
         self._end_dirs = []  # _end_direction of every piece (computed once)
         self._buf = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=np.int64))
+        self.memo: dict = {}  # name -> (len(pieces), answer): see :meth:`remembered`
 
     def add(self, polyline, pose_first=None, pose_last=None) -> None:
         """Record a piece, (k, 2) float with k >= 2, material on its right,
@@ -168,6 +169,18 @@ class KnownContour:
             if not (_point_segments(pl[0], self._a[g], self._b[g]) <= self.join).any():
                 starts.append((pl[0], self.poses[i][0], i))
         return ends, starts
+
+    def remembered(self, name: str, compute):
+        """``compute(self)``, remembered under ``name`` while the map stays as it is.
+
+        The map only grows, one piece per :meth:`add` (a copy, :meth:`with_pieces`,
+        starts with nothing remembered), so its number of pieces is its version: an
+        answer computed from the map at that version is the answer again. The answer
+        is shared: callers must not change it."""
+        hit = self.memo.get(name)
+        if hit is None or hit[0] != len(self.pieces):
+            hit = self.memo[name] = (len(self.pieces), compute(self))
+        return hit[1]
 
     def successors(self, i) -> list:
         """[(j, k)]: piece j passes the last point of piece ``i`` (within

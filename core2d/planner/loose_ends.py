@@ -123,12 +123,22 @@ def _one_each(found, r):
 def recorded_stops(known):
     """Loose ends and loose starts of ``known`` (see the module doc).
 
+    The audit asks again about a map that has not changed (its last round, then
+    :func:`~core2d.planner.audit.report_leftovers`): the answer is remembered per
+    version of the map (:meth:`KnownContour.remembered
+    <core2d.planner.known.KnownContour.remembered>`) and shared, not to be changed.
+
     Returns
     -------
-    (ends, starts) : lists of (point (2,) float, Posture or None, piece index)
+    (ends, starts) : tuples of (point (2,) float, Posture or None, piece index)
         -- the last point of the piece where the recorded contour stops
         (the first of the one where it begins) and its posture.
     """
+    return known.remembered("recorded_stops", _walk_stops)
+
+
+def _walk_stops(known):
+    """:func:`recorded_stops` walked from scratch."""
     ends, starts, found = [], [], {}
 
     def passing(m):  # who passes the first point of piece m: asked again by later chains
@@ -143,4 +153,4 @@ def recorded_stops(known):
         j = _start_chain(known, i, passing)
         if j is not None:
             starts.append((known.pieces[j][0], known.poses[j][0], j))
-    return _one_each(ends, known.join), _one_each(starts, known.join)
+    return tuple(_one_each(ends, known.join)), tuple(_one_each(starts, known.join))

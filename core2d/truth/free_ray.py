@@ -29,7 +29,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["HALF_ANGLE", "candidate_directions", "normal_cone_free"]
+__all__ = ["HALF_ANGLE", "CHUNK", "candidate_directions", "chunk_boxes", "normal_cone_free"]
 
 #: half-angle (rad) of a cone that must be free
 HALF_ANGLE = 1e-5
@@ -37,6 +37,11 @@ HALF_ANGLE = 1e-5
 TURNS = (0.6, 1.2, 0.5 * math.pi - 0.05, 0.5 * math.pi - 0.01)
 #: largest turn from the normal a candidate may have (the cone stays in the free half-plane)
 MAX_TURN = 1.4
+#: consecutive segments per bounding box: a box wholly outside a cone's boundary is skipped
+CHUNK = 16
+#: a box is skipped only when it is outside by more than this (x the coordinates' size):
+#: far above the rounding of a boundary's equation at a corner, far below ``margin``
+SLACK = 1e-12
 
 
 def normal_cone_free(points, tangents, seg_a, seg_b, own, margin: float,
@@ -65,9 +70,28 @@ def normal_cone_free(points, tangents, seg_a, seg_b, own, margin: float,
     own = np.ascontiguousarray(own, dtype=np.int64).reshape(-1)
     out = np.zeros(len(p), dtype=np.bool_)
     if len(p):
+        lo, hi = chunk_boxes(a, b)
+        size = max(float(np.abs(a).max()), float(np.abs(b).max())) if len(a) else 0.0
         _cone_free(p, dirs, a, b, own, float(margin), math.cos(HALF_ANGLE),
-                   math.sin(HALF_ANGLE), out)
+                   math.sin(HALF_ANGLE), lo, hi, CHUNK, SLACK * size, out)
     return out
+
+
+def chunk_boxes(a, b) -> tuple[np.ndarray, np.ndarray]:
+    """(m, 2), (m, 2) float: the bounding box of each run of :data:`CHUNK` consecutive
+    segments ``[a_j, b_j]`` (m = ceil(n / CHUNK); the last run may be shorter). A
+    contour's consecutive edges lie close together, so a thin cone misses most boxes."""
+    n = len(a)
+    if n == 0:
+        return np.zeros((0, 2)), np.zeros((0, 2))
+    m = -(-n // CHUNK)
+    pad = m * CHUNK - n
+    ends = np.concatenate([a, b], axis=1)  # (n, 4): ax, ay, bx, by
+    if pad:
+        ends = np.concatenate([ends, np.repeat(ends[-1:], pad, axis=0)])
+    ends = ends.reshape(m, CHUNK, 2, 2)
+    return (np.ascontiguousarray(ends.min(axis=(1, 2))),
+            np.ascontiguousarray(ends.max(axis=(1, 2))))
 
 
 def candidate_directions(points, tangents, center=None) -> np.ndarray:
@@ -94,11 +118,32 @@ def candidate_directions(points, tangents, center=None) -> np.ndarray:
 
 
 @numba.njit(cache=True, nogil=True)
-def _cone_free(p, dirs, a, b, own, margin, cos_h, sin_h, out):  # pragma: no cover - compiled
+def _box_outside(lx, ly, rx, ry, x0, y0, x1, y1, margin, slack):  # pragma: no cover
+    """Is the box [x0, x1] x [y0, y1] (relative to the apex) outside the left boundary
+    (f > slack at every corner) or the right one (g < -slack at every corner)? Then so
+    is every segment in it, as the segment test computes it (f, g are linear: their
+    extremes over a box are at its corners; ``slack`` covers the rounding). NaN: no."""
+    if not (x0 == x0 and y0 == y0 and x1 == x1 and y1 == y1):
+        return False
+    fmin = min(min(lx * y0 - ly * x0, lx * y1 - ly * x0),
+               min(lx * y0 - ly * x1, lx * y1 - ly * x1)) - margin
+    if fmin > slack:
+        return True
+    gmax = max(max(rx * y0 - ry * x0, rx * y1 - ry * x0),
+               max(rx * y0 - ry * x1, rx * y1 - ry * x1)) + margin
+    return gmax < -slack
+
+
+@numba.njit(cache=True, nogil=True)
+def _cone_free(p, dirs, a, b, own, margin, cos_h, sin_h, lo, hi, chunk, slack,
+               out):  # pragma: no cover - compiled
     """Fill ``out[r]``: for some candidate ``d = dirs[r, k]``, the segment ``[a_j, b_j]``
     (``j != own[r]``) meets, for no j, ``{v : cross(dl, v) <= margin and
     cross(dr, v) >= -margin}`` (v = x - p[r]): the cone between ``dl`` and ``dr``,
-    ``d`` turned by +-HALF_ANGLE, widened by ``margin``."""
+    ``d`` turned by +-HALF_ANGLE, widened by ``margin``. The segments of a box
+    (``lo``, ``hi``: runs of ``chunk`` segments, :func:`chunk_boxes`) wholly outside a
+    boundary are not looked at: each of them would be skipped as wholly outside."""
+    n = a.shape[0]
     for r in range(p.shape[0]):
         px, py = p[r, 0], p[r, 1]
         skip = own[r]
@@ -109,31 +154,45 @@ def _cone_free(p, dirs, a, b, own, margin, cos_h, sin_h, out):  # pragma: no cov
             lx, ly = nx * cos_h - ny * sin_h, nx * sin_h + ny * cos_h
             rx, ry = nx * cos_h + ny * sin_h, -nx * sin_h + ny * cos_h
             free = True
-            for j in range(a.shape[0]):
-                if j == skip:
+            for c in range(lo.shape[0]):
+                if _box_outside(lx, ly, rx, ry, lo[c, 0] - px, lo[c, 1] - py, hi[c, 0] - px,
+                                hi[c, 1] - py, margin, slack):
                     continue
-                vax, vay = a[j, 0] - px, a[j, 1] - py
-                vbx, vby = b[j, 0] - px, b[j, 1] - py
-                # f: inside the left boundary when f <= 0; g: inside the right when g >= 0
-                fa = lx * vay - ly * vax - margin
-                fb = lx * vby - ly * vbx - margin
-                ga = rx * vay - ry * vax + margin
-                gb = rx * vby - ry * vbx + margin
-                if (fa > 0.0 and fb > 0.0) or (ga < 0.0 and gb < 0.0):
-                    continue  # wholly outside one boundary
-                # clip the parameter range [0, 1] to f <= 0 and g >= 0 (Liang-Barsky)
-                lo, hi = 0.0, 1.0
-                if fa > 0.0:  # enters through f = 0 (fb <= 0 here)
-                    lo = max(lo, fa / (fa - fb))
-                elif fb > 0.0:  # leaves through f = 0
-                    hi = min(hi, fa / (fa - fb))
-                if ga < 0.0:
-                    lo = max(lo, ga / (ga - gb))
-                elif gb < 0.0:
-                    hi = min(hi, ga / (ga - gb))
-                if lo <= hi or not (fa == fa and fb == fb and ga == ga and gb == gb):
-                    free = False  # a common part (or not a number)
+                if not _segments_free(lx, ly, rx, ry, px, py, a, b, c * chunk,
+                                      min(n, (c + 1) * chunk), skip, margin):
+                    free = False
                     break
             if free:
                 break
         out[r] = free
+
+
+@numba.njit(cache=True, nogil=True)
+def _segments_free(lx, ly, rx, ry, px, py, a, b, j0, j1, skip,
+                   margin):  # pragma: no cover - compiled
+    """Do the segments ``j0 <= j < j1`` (but ``skip``) all miss the widened cone?"""
+    for j in range(j0, j1):
+        if j == skip:
+            continue
+        vax, vay = a[j, 0] - px, a[j, 1] - py
+        vbx, vby = b[j, 0] - px, b[j, 1] - py
+        # f: inside the left boundary when f <= 0; g: inside the right when g >= 0
+        fa = lx * vay - ly * vax - margin
+        fb = lx * vby - ly * vbx - margin
+        ga = rx * vay - ry * vax + margin
+        gb = rx * vby - ry * vbx + margin
+        if (fa > 0.0 and fb > 0.0) or (ga < 0.0 and gb < 0.0):
+            continue  # wholly outside one boundary
+        # clip the parameter range [0, 1] to f <= 0 and g >= 0 (Liang-Barsky)
+        lo, hi = 0.0, 1.0
+        if fa > 0.0:  # enters through f = 0 (fb <= 0 here)
+            lo = max(lo, fa / (fa - fb))
+        elif fb > 0.0:  # leaves through f = 0
+            hi = min(hi, fa / (fa - fb))
+        if ga < 0.0:
+            lo = max(lo, ga / (ga - gb))
+        elif gb < 0.0:
+            hi = min(hi, ga / (ga - gb))
+        if lo <= hi or not (fa == fa and fb == fb and ga == ga and gb == gb):
+            return False  # a common part (or not a number)
+    return True

@@ -9,7 +9,8 @@ caller's script is not re-imported, so no ``if __name__ == "__main__"``
 guard is needed; spawned workers (elsewhere) cut them again from the mesh
 arrays (Embree scenes do not pickle). Every path runs the same code on the
 same slices, so the results are identical; they come back in task order
-whatever the completion order.
+whatever the completion order. Workers are handed the costliest slices first
+(:mod:`recon3d.sensing.order`), so no worker is left alone with a costly one at the end.
 
 The workers live no longer than the call:
 
@@ -46,6 +47,7 @@ from recon3d.io.side import Side, can_fork
 from recon3d.records import Family, SliceRun
 from recon3d.score.closest import compile_kernels as compile_distances
 from recon3d.sensing.kernels import cold_kernels, load_numba_target
+from recon3d.sensing.order import dispatch_order
 from recon3d.sensing.worker import SenseSettings, WorkerState
 
 __all__ = ["sense_all", "WorkerDied", "describe_exit"]
@@ -205,10 +207,11 @@ def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left:
 
 
 def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list,
-              progress, start: int = 0) -> None:
-    """Hand out ``tasks[start:]`` one at a time per worker; collect the results into ``out``."""
-    todo = iter(range(start, len(tasks)))
-    left = len(tasks) - start
+              progress, order: list) -> None:
+    """Hand out ``tasks[k]`` for k in ``order``, one at a time per worker; collect the
+    results into ``out`` (``out[k]``: task order whatever the completion order)."""
+    todo = iter(order)
+    left = len(order)
     for w in range(len(workers.procs)):
         k = next(todo, None)
         if k is not None:
@@ -305,7 +308,8 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
             thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
                                       name="recon3d-beside")
             thread.start()
-        _run_pool(workers, tasks, settings, out, progress, start=first)
+        order = [k for k in dispatch_order(families, tasks, settings.eps) if k >= first]
+        _run_pool(workers, tasks, settings, out, progress, order)
         done = True
     finally:
         _STATE = None

@@ -70,7 +70,8 @@ def plane_crossing(mesh, plane) -> PlaneCrossing:
     faces = np.asarray(mesh.faces)
     local_v = (vertices - plane.origin) @ plane.basis.T
     z = local_v[:, 2]
-    idx = crossing_faces(z[faces])
+    above = z > 0  # per vertex, then per face corner: no (f, 3) float gather
+    idx = _mixed(above[faces[:, 0]], above[faces[:, 1]], above[faces[:, 2]])
     local = local_v[faces[idx]]
     seg, outward = section_segments(local)
     keep = np.any(seg[:, 0] != seg[:, 1], axis=1)  # touching-only faces
@@ -92,7 +93,13 @@ def crossing_faces(heights_per_face) -> np.ndarray:
     (k,) int
     """
     above = np.asarray(heights_per_face) > 0
-    return np.flatnonzero(above.any(axis=1) & ~above.all(axis=1))
+    return _mixed(above[:, 0], above[:, 1], above[:, 2])
+
+
+def _mixed(a, b, c) -> np.ndarray:
+    """Indices where the (m,) bools ``a``, ``b``, ``c`` are not all equal: "any and not
+    all" of each row, without numpy's slow reductions along rows of 3."""
+    return np.flatnonzero((a != b) | (a != c))
 
 
 def section_segments(local) -> tuple[np.ndarray, np.ndarray]:

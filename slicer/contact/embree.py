@@ -61,6 +61,9 @@ class EmbreeContact:
     plane : SlicePlane
         Should be non-degenerate (see :func:`slicer.degenerate.nudge_planes`);
         a warning is logged otherwise.
+    scale : float or None
+        :func:`slicer.degenerate.mesh_scale` of ``mesh`` when the caller knows it
+        (a :class:`slicer.Slice` does: computed once per mesh, not once per plane).
 
     Attributes
     ----------
@@ -91,11 +94,12 @@ class EmbreeContact:
     (2.0, [-1.0, 0.5], [-1.0, 0.0])
     """
 
-    def __init__(self, mesh, plane):
+    def __init__(self, mesh, plane, scale: float | None = None):
         self.plane = plane
         cut = plane_crossing(mesh, plane)
         z = cut.heights
-        scale = mesh_scale(np.asarray(mesh.vertices, dtype=np.float64))
+        if scale is None:
+            scale = mesh_scale(np.asarray(mesh.vertices, dtype=np.float64))
         near = np.abs(z).min() if len(z) else np.inf
         if near < DEGENERATE_TOL * scale:
             logger.warning(

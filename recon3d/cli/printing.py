@@ -57,8 +57,14 @@ def estimate_note(slices: int, first_seconds: float, slice_seconds: float, jobs:
                   longer_than: float = LONG_RUN_SECONDS) -> str | None:
     """The note printed early in a run that will take long (:func:`projected_seconds`).
 
+    With several jobs the pool hands out the costliest slices first
+    (:mod:`recon3d.sensing.order`), so the slices timed here are among the slowest and
+    the projection leans long: the note says so.
+
     >>> estimate_note(2000, 2.2, 0.4, 2)
-    'about 7 min for 2000 slices (first slice 2.2 s, then 0.40 s a slice, 2 jobs)'
+    'about 7 min or less for 2000 slices (first slice 2.2 s, then 0.40 s a slice, 2 jobs; the costliest slices go first)'
+    >>> estimate_note(2000, 2.2, 0.4, 1)
+    'about 13 min for 2000 slices (first slice 2.2 s, then 0.40 s a slice, 1 job)'
     >>> estimate_note(24, 2.2, 0.4, 2) is None  # 7 s: no note
     True
     """
@@ -66,9 +72,9 @@ def estimate_note(slices: int, first_seconds: float, slice_seconds: float, jobs:
     if total <= longer_than:
         return None
     jobs = max(1, min(jobs, slices))
-    return (f"about {max(1, round(total / 60))} min for {slices} slices (first slice "
-            f"{first_seconds:.1f} s, then {slice_seconds:.2f} s a slice, "
-            f"{jobs} job{'s' if jobs > 1 else ''})")
+    less, tail = (" or less", "s; the costliest slices go first") if jobs > 1 else ("", "")
+    return (f"about {max(1, round(total / 60))} min{less} for {slices} slices (first slice "
+            f"{first_seconds:.1f} s, then {slice_seconds:.2f} s a slice, {jobs} job{tail})")
 
 
 def _names(run: MeshRun, slices: list[SliceRun]) -> str:

@@ -46,7 +46,7 @@ from scipy.ndimage import map_coordinates
 from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import KIND_LABEL, sample_pieces
-from recon3d.surface.support import contradiction, sensed_solid
+from recon3d.surface.support import contradiction, filled_in, sensed_solid
 from recon3d.viz import libs
 
 __all__ = ["FusionSettings", "world_axes", "resample", "value_in_slab", "fused_field",
@@ -71,6 +71,11 @@ class FusionSettings:
         Beyond a family's slab its end slice extended counts as its solid for this rule,
         fading as 1 / (1 + (s / ``reach``)^2) in the contradiction and as
         1 / (1 + (s / ``solid_reach``)^2) as the solid that caps (``s`` grid steps beyond).
+    filled : bool -- the converse (with ``explained``): a solid a family only filled in
+        (:func:`recon3d.surface.support.filled_in`: deeper than ``depth`` grid steps behind
+        its traced walls, or behind a W3 lid, an unknown chord, a bridge) weighs fully
+        against another family's empty only as far as that family's planes do *not*
+        contradict it; where they do, it is at most ``cap`` x that family's weight.
     """
 
     power: float = 2.0
@@ -83,6 +88,8 @@ class FusionSettings:
     grow: float = 2.0
     reach: float = 4.0
     solid_reach: float = 16.0
+    filled: bool = True
+    depth: float = 4.0
 
 
 def empty_surface() -> trimesh.Trimesh:
@@ -187,18 +194,22 @@ def _slab_distance(fields, pts: np.ndarray) -> np.ndarray:
 
 def _family_terms(ff, fields, pts: np.ndarray, settings: FusionSettings):
     """One family at world points (n, 3): field value, weight c^power, the contradiction
-    supporting its empty and its sensed solid share (both 0 without ``explained``), (n,) each."""
+    supporting its empty, its sensed solid share and its filled-in share (the last three 0
+    without ``explained``), (n,) each."""
     others = [o for o in fields if o is not ff] if settings.explained else []
     extra = ((contradiction(ff, others, partial(value_in_slab, scale=settings.reach),
-                            settings.grow), sensed_solid(ff)) if others else ())
+                            settings.grow), sensed_solid(ff), filled_in(ff, settings.depth))
+             if others else ())
     v, c, *ks = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale,
                          extra)
     wgt = c.astype(np.float64) ** settings.power
     if not ks:
-        return v, wgt, np.zeros(len(pts)), np.zeros(len(pts))
+        zero = np.zeros(len(pts))
+        return v, wgt, zero, zero, zero
     reach = value_in_slab(ff, pts, settings.solid_reach)[1]
     solid = np.where(v > 0, np.clip(ks[1], 0, 1) * reach, 0.0)
-    return v, wgt, np.clip(ks[0], 0, 1), solid
+    filled = np.where(v > 0, np.clip(ks[2], 0, 1), 0.0) if settings.filled else 0 * v
+    return v, wgt, np.clip(ks[0], 0, 1), solid, filled
 
 
 def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
@@ -215,18 +226,23 @@ def fused_field(fields, step: float, settings: FusionSettings = FusionSettings()
     tc = min(ff.grid.truncation for ff in fields)
     vals, parts = [], []
     for ff in fields:
-        v, wgt, k, solid = _family_terms(ff, fields, pts, settings)
+        v, wgt, k, solid, filled = _family_terms(ff, fields, pts, settings)
         vals.append(np.clip(v, -tc, tc))
-        parts.append((wgt, k, solid))
+        parts.append((wgt, k, solid, filled))
     num = np.zeros(len(pts))
     den = np.zeros(len(pts))
-    for j, (v, (wgt, k, _)) in enumerate(zip(vals, parts)):
-        if settings.explained and len(fields) > 1:  # an unexplained empty yields to a solid
-            capped = wgt
-            for i, (wo, _, so) in enumerate(parts):  # so: another family's sensed solid
-                if i != j:
-                    capped = (1 - so) * capped + so * np.minimum(capped, settings.cap * wo)
-            wgt = np.where(v < 0, k * wgt + (1 - k) * capped, wgt)
+    for j, (v, (wgt, k, _, filled)) in enumerate(zip(vals, parts)):
+        if settings.explained and len(fields) > 1:
+            capped, yields = wgt, wgt
+            for i, (wo, ko, so, _) in enumerate(parts):
+                if i == j:
+                    continue
+                # an unexplained empty yields to another family's sensed solid (so)
+                capped = (1 - so) * capped + so * np.minimum(capped, settings.cap * wo)
+                # a filled-in solid yields where the other family's planes saw it empty (ko)
+                share = filled * np.where(vals[i] < 0, ko, 0.0)
+                yields = (1 - share) * yields + share * np.minimum(yields, settings.cap * wo)
+            wgt = np.where(v < 0, k * wgt + (1 - k) * capped, yields)
         num += wgt * v
         den += wgt
     fused = np.minimum(num / den, _slab_distance(fields, pts))

@@ -72,6 +72,10 @@ class CapSettings:
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
+    own_trust : bool -- there the slice's confidence (for fusing families) becomes at least
+        the mean of its neighbours': the value is their say (off: the slice keeps the
+        'unseen' trust of its chord's fill, and another family's filled-in solid outweighs
+        the dropped fill on the plane -- a plate across the Ravens cup's cavity along x).
     """
 
     enabled: bool = True
@@ -80,6 +84,7 @@ class CapSettings:
     at: float = 0.0
     thin: int = 2
     own: bool = True
+    own_trust: bool = True
     deep: float = 1.0
     slits: bool = False
     enclosed: float = 0.25

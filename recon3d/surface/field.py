@@ -221,7 +221,7 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
               for i, t in enumerate(clip)]
     if warped and caps.own:
         f, f0 = own_caps(f, capped, grid.step), f
-        if confidence:  # where a slice drops (fills) on its plane what both neighbours
+        if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
             seen = _neighbours_say(seen, f, f0)  # showed empty (solid), they are its sensing
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)

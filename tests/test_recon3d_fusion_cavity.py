@@ -11,11 +11,14 @@ empty. Checked against the truth solid with trimesh (``contains``), not recon3d 
 """
 import numpy as np
 import pytest
+import shapely
 import trimesh
+from manifold3d import Manifold, Mesh64
 
 import slicer
 from recon3d.surface.caps import CapSettings
 from recon3d.surface.closure import slice_region
+from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.fusion import FusionSettings
 from recon3d.surface.solid import family_solid, fuse
 
@@ -77,15 +80,55 @@ def test_the_pocket_stays_open_on_the_plane_that_closed_it_with_a_chord(cup):
     assert fuse([z, x], mesh.bounds).contains(pts).mean() > 0.5  # a plate across the pocket
 
 
-def test_without_the_rule_for_filled_solid_the_fused_pocket_wall_is_the_same(cup):
-    """The pocket's walls lie 4 mm (8 steps) behind z's traced outer wall: z's solid there is
-    filled in; on the planes x saw it empty. The fused surface keeps the true wall within a
-    step with and without ``FusionSettings.filled``."""
-    mesh, z, x = cup
-    for settings in (FusionSettings(), FusionSettings(filled=False)):
-        fused = fuse([z, x], mesh.bounds, "weighted", settings)
-        pts, _ = trimesh.sample.sample_surface(fused, 4000, seed=2)
-        lo = -8.0  # inside both slabs
-        pts = pts[(np.abs(pts) <= 8.0 + 1e-9).all(axis=1) & (pts[:, 2] >= lo)]
-        far = np.abs(trimesh.proximity.signed_distance(mesh, pts))
-        assert np.percentile(far, 99) < 2 * STEP
+def _genus(mesh):
+    m = Mesh64(vert_properties=np.array(mesh.vertices, dtype=np.float64),
+               tri_verts=np.array(mesh.faces, dtype=np.uint64))
+    m.merge()
+    return sum(p.genus() for p in Manifold(m).decompose())
+
+
+def test_a_solid_only_filled_in_yields_where_the_other_familys_planes_saw_it_empty():
+    """A block with a bore along z: z fills the bore (a hole in its planes), x's planes see
+    it. With every family's filled-in space trusted as if seen (``unseen=1``), the weights
+    alone keep z's fill; ``FusionSettings(filled=True)`` lets it yield where x's planes
+    contradict it, and the bore opens as in the truth (genus by manifold3d)."""
+    bore = trimesh.creation.cylinder(5.0, 40.0, sections=32)
+    mesh = trimesh.creation.box((40.0, 30.0, 20.0)).difference(bore, engine="manifold")
+    blind = ConfidenceSettings(unseen=1.0)
+    solids = []
+    for axis, count in (("z", 8), ("x", 12)):
+        cuts = slicer.slice_mesh(mesh, axis=axis, count=count)
+        regs = [slice_region([np.vstack([lp, lp[:1]]) for lp in c.loops], [], [], [], 1e-9)
+                for c in cuts]
+        solids.append(family_solid(regs, [c.plane for c in cuts], 0.3, keep_field=True,
+                                   trust=blind))
+    assert _genus(mesh) == 1
+    assert _genus(fuse(solids, mesh.bounds, "weighted", FusionSettings(filled=True))) == 1
+    assert _genus(fuse(solids, mesh.bounds, "weighted", FusionSettings(filled=False))) == 0
+
+
+def test_filled_in_is_zero_behind_a_traced_wall_and_one_deep_or_behind_a_chord():
+    """:func:`recon3d.surface.support.filled_in` on the U-slot slice closed by a chord,
+    against shapely distances: 0 within depth / 2 of the traced wall, 1 from depth on and
+    wherever the chord is the nearer piece, 0 outside."""
+    from recon3d.surface.field import FamilyField
+    from recon3d.surface.support import filled_in
+    box = trimesh.creation.box((20.0, 20.0, 20.0))
+    cuts = slicer.slice_mesh(box, axis="z", count=2)
+    u = np.array([[-10, -10], [10, -10], [10, 10], [6, 10], [6, -2], [-6, -2], [-6, 10],
+                  [-10, 10]], dtype=float)
+    outside = u[[3, 2, 1, 0, 7, 6]]
+    region = slice_region([outside], [], [], [np.array([u[6], u[3]])], 1e-9)
+    solid = family_solid([region, region], [c.plane for c in cuts], STEP, keep_field=True)
+    share = filled_in(solid.field, depth=4.0)[solid.field.grid.slice_layer(0)].ravel()
+    nodes = solid.field.grid.nodes()
+    wall = shapely.LineString(outside)
+    chord = shapely.LineString([u[6], u[3]])
+    pts = shapely.points(nodes)
+    dw, dc = shapely.distance(pts, wall), shapely.distance(pts, chord)
+    inside = shapely.contains_xy(region.geometry, nodes[:, 0], nodes[:, 1])
+    tol = 0.51 * STEP  # the pieces are sampled every step / 2
+    assert (share[~inside] == 0).all()
+    assert (share[inside & (dw < 2 * STEP - tol) & (dw < dc - tol)] == 0).all()
+    assert (share[inside & (dw > 4 * STEP + tol)] == 1).all()
+    assert (share[inside & (dc < dw - tol)] == 1).all()

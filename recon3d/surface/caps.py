@@ -32,7 +32,11 @@ little does not join a wide fill to that wall):
 of the capped value, chosen to cross 0 at ``at`` x the gap from that slice, and the alignment
 pairs no boundary sample of the capped component. A slice whose fill (empty) is capped
 towards **both** neighbours drops (fills) it on its own plane too (:func:`own_caps`):
-otherwise a flat plate of surface stays on the plane. The end slices keep theirs.
+otherwise a flat plate of surface stays on the plane. The end slices keep theirs. There the
+slice's confidence (for fusing families, :mod:`recon3d.surface.confidence`) becomes at least
+its neighbours' mean (``own_trust``): the dropped value is their sensing, not the chord's
+'unseen' fill, so another family's filled-in solid does not put the plate back (the Ravens
+cup along z+x: a plate across the cavity on an x plane).
 """
 from __future__ import annotations
 

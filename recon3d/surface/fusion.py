@@ -25,7 +25,7 @@ slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Convers
 a bridge: :func:`recon3d.surface.support.filled_in`) and ``F_f < 0``, ``g``'s weight counts
 fully only as far as ``f``'s planes do *not* contradict it, elsewhere at most ``cap`` x
 ``f``'s weight (a cavity enclosed in g's planes -- the Ravens cup's along z -- whose walls
-f's planes trace). Beyond f's slab
+f's planes trace; measured, off by default). Beyond f's slab
 ``F_f`` is its end slice extended, with a weight only near that slice's walls
 (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of the slabs (faces
 on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.

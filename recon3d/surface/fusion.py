@@ -25,7 +25,7 @@ slice spacing); elsewhere it is at most ``cap`` (0.03) x ``g``'s weight. Convers
 a bridge: :func:`recon3d.surface.support.filled_in`) and ``F_f < 0``, ``g``'s weight counts
 fully only as far as ``f``'s planes do *not* contradict it, elsewhere at most ``cap`` x
 ``f``'s weight (a cavity enclosed in g's planes -- the Ravens cup's along z -- whose walls
-f's planes trace; measured, off by default). Beyond f's slab
+f's planes trace). Beyond f's slab
 ``F_f`` is its end slice extended, with a weight only near that slice's walls
 (``FusionSettings.extend``). The surface is ``{F > 0}`` cut to the union of the slabs (faces
 on the cut: caps, label 5), bodies smaller than (``speck`` x step)^3 dropped.
@@ -81,12 +81,14 @@ class FusionSettings:
         (:func:`recon3d.surface.support.filled_in`: deeper than ``depth`` grid steps behind
         its traced walls, or behind a W3 lid, an unknown chord, a bridge) weighs fully
         against another family's empty only as far as that family's planes do *not*
-        contradict it; where they do, it is at most ``cap`` x that family's weight. Off by
-        default: measured (``bench/surface_cases.py``, z+x F@1%) it lifts the Ravens cup
-        0.9165 -> 0.9247, ``trimesh_idler_riser`` 0.9718 -> 0.9801, ``mushroom`` 0.9737 ->
-        0.9802, ``featuretype`` 0.9342 -> 0.9388, but costs the open teapot 0.8858 -> 0.8806
-        (x alone 0.8858: z's channels inside the pot, between its unknown chords, then
-        carve x's filled interior) and ``comb`` 0.8416 -> 0.8392.
+        contradict it; where they do, it is at most ``cap`` x that family's weight.
+        Measured (``bench/surface_cases.py``, z+x F@1%, the rule off with
+        ``ConfidenceSettings.unswept_reach`` 8 -> on with it unbounded): the Ravens cup 0.9165 -> 0.9207,
+        ``trimesh_idler_riser`` 0.9718 -> 0.9801, ``mushroom`` 0.9737 -> 0.9794,
+        ``featuretype`` 0.9342 -> 0.9388, ``cup_handle`` 0.9964 -> 0.9995; ``comb`` 0.8416
+        -> 0.8392 (x alone 0.482), the open teapot 0.8858 -> 0.8850 (with the reach of 8
+        steps it fell to 0.8806: z's channels between its unknown chords, counted as shown
+        empty, carved x's filled pot).
     """
 
     power: float = 2.0
@@ -99,7 +101,7 @@ class FusionSettings:
     grow: float = 2.0
     reach: float = 4.0
     solid_reach: float = 16.0
-    filled: bool = False
+    filled: bool = True
     depth: float = 4.0
 
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -66,6 +67,8 @@ def panel(ax, run, meshes, far, axis: int, h: float, band: float, planes) -> Non
         ax.plot([], [], color=colour, lw=lw, label=label)
     for p in planes:
         ax.axvline(p, color="0.75", lw=0.5, zorder=0)
+    if len(planes):
+        ax.plot([], [], color="0.75", lw=0.5, label="x slice planes")
     near = far[np.abs(far[:, axis] - h) < band]
     ax.scatter(near[:, a], near[:, b], s=3, color="tab:orange", zorder=3,
                label="z+x farther than tau (within a quarter gap)")
@@ -108,8 +111,9 @@ def main(argv=None) -> int:
         for i, h in enumerate(hs):
             ax = axes[i, j]
             panel(ax, run, meshes, far, axis, h, band, planes if args.axis == "z" else [])
-            ax.set_title(f"{args.case}, section {args.axis} = {h:g}: {title}\n"
-                         f"z+x F@1% {f1:.4f}, tau = {tau:.3g}", fontsize=9)
+            ax.set_title(f"{args.case}, section {args.axis} = {h:g}, z+x F@1% {f1:.4f}, "
+                         f"tau = {tau:.3g}\n" + "\n".join(textwrap.wrap(title, 70)),
+                         fontsize=9)
     fig.tight_layout()
     args.png.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.png, dpi=90)

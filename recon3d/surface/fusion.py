@@ -52,7 +52,7 @@ from scipy.ndimage import map_coordinates
 from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import KIND_LABEL, sample_pieces
-from recon3d.surface.support import contradiction, filled_in, sensed_solid
+from recon3d.surface.support import contradiction, solid_shares
 from recon3d.viz import libs
 
 __all__ = ["FusionSettings", "world_axes", "resample", "value_in_slab", "fused_field",
@@ -211,7 +211,7 @@ def _family_terms(ff, fields, pts: np.ndarray, settings: FusionSettings):
     without ``explained``), (n,) each."""
     others = [o for o in fields if o is not ff] if settings.explained else []
     extra = ((contradiction(ff, others, partial(value_in_slab, scale=settings.reach),
-                            settings.grow), sensed_solid(ff), filled_in(ff, settings.depth))
+                            settings.grow), *solid_shares(ff, settings.depth))
              if others else ())
     v, c, *ks = resample(ff, pts, settings.outside, settings.extend, settings.extend_scale,
                          extra)

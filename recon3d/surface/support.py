@@ -32,7 +32,7 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
 
-__all__ = ["plane_points", "contradiction", "sensed_solid", "filled_in"]
+__all__ = ["plane_points", "contradiction", "sensed_solid", "filled_in", "solid_shares"]
 
 
 def plane_points(ff, i: int) -> np.ndarray:
@@ -71,25 +71,34 @@ def _inside_depths(ff, i: int):
     return sel, dt, dc
 
 
-def _per_plane(ff, value) -> np.ndarray:
-    """(layers, ny, nx) float32: ``value(dt, dc)`` on each slice's inside nodes (0 outside),
-    blended linearly between slices."""
+def _per_plane(ff, *values) -> list[np.ndarray]:
+    """Per function ``value(dt, dc)``: a (layers, ny, nx) float32 map of its value on each
+    slice's inside nodes (0 outside), blended linearly between slices (one pass)."""
     g = ff.grid
     nx, ny = g.shape
-    planes = []
+    planes = [[] for _ in values]
     for i in range(len(ff.regions)):
         sel, dt, dc = _inside_depths(ff, i)
-        m = np.zeros(nx * ny, dtype=np.float32)
-        m[sel] = value(dt, dc)
-        planes.append(m.reshape(ny, nx))
-    return _blend(planes, g)
+        for out, value in zip(planes, values):
+            m = np.zeros(nx * ny, dtype=np.float32)
+            m[sel] = value(dt, dc)
+            out.append(m.reshape(ny, nx))
+    return [_blend(p, g) for p in planes]
+
+
+def _sensed(dt, dc):
+    return np.isfinite(dt) & (dt <= dc)
+
+
+def _filled(depth: float):
+    return lambda dt, dc: np.where(dt <= dc, 1 - np.clip(2 - 2 * dt / depth, 0, 1), 1.0)
 
 
 def sensed_solid(ff) -> np.ndarray:
     """(layers, ny, nx) float32 in [0, 1]: 1 inside a slice's region where its nearest piece
     is a traced wall (W1, W2), 0 elsewhere (outside, or closed by a W3 lid, an unknown chord,
     a bridge), blended linearly between slices."""
-    return _per_plane(ff, lambda dt, dc: np.isfinite(dt) & (dt <= dc))
+    return _per_plane(ff, _sensed)[0]
 
 
 def filled_in(ff, depth: float = 4.0) -> np.ndarray:
@@ -102,9 +111,13 @@ def filled_in(ff, depth: float = 4.0) -> np.ndarray:
     bridge is the nearest piece; 0 outside. Blended linearly between slices. The same depth
     ramp as the family's confidence (:func:`recon3d.surface.confidence.seen_map`).
     """
-    s = ff.grid.step * depth
-    return _per_plane(ff, lambda dt, dc: np.where(
-        dt <= dc, 1 - np.clip(2 - 2 * dt / s, 0, 1), 1.0))
+    return _per_plane(ff, _filled(ff.grid.step * depth))[0]
+
+
+def solid_shares(ff, depth: float = 4.0) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sensed_solid` and :func:`filled_in` of one family, in one pass."""
+    a, b = _per_plane(ff, _sensed, _filled(ff.grid.step * depth))
+    return a, b
 
 
 def contradiction(ff, others, sample, grow: float = 2.0) -> np.ndarray:

@@ -7,7 +7,10 @@ solid z only filled in. Family x slices along it: its planes cut a U and see the
 empty, except the middle plane, whose probe never entered: its W1 stops at the pocket's
 mouth and an unknown chord A_iB_i closes it (§3.3). The caps rule (:mod:`recon3d.surface.caps`)
 drops that chord's fill on the middle plane, as both neighbouring x planes show the pocket
-empty. Checked against the truth solid with trimesh (``contains``), not recon3d code.
+empty. Checked against the truth solid with trimesh (``contains``), not recon3d code. Also
+the rule that a solid a family only filled in yields to the other family's sensed empty (a
+bored block, genus by manifold3d) and its map :func:`recon3d.surface.support.filled_in`
+(against shapely distances).
 """
 import numpy as np
 import pytest
@@ -59,7 +62,8 @@ def cup():
 
 
 def _pocket_on_middle_plane():
-    """(n, 3) points in the pocket on the x = 0 plane, 1 mm and more from its walls, inside both slabs."""
+    """(n, 3) points in the pocket on the x = 0 plane, 1 mm and more from its walls, inside
+    both slabs (z <= 7 < 8, the last z plane)."""
     y, z = np.meshgrid(np.linspace(-5, 5, 11), np.linspace(-1, 7, 9))
     return np.column_stack([np.zeros(y.size), y.ravel(), z.ravel()])
 
@@ -72,7 +76,7 @@ def test_the_pocket_stays_open_on_the_plane_that_closed_it_with_a_chord(cup):
     mesh, z, x = cup
     pts = _pocket_on_middle_plane()
     assert not mesh.contains(pts).any()  # the truth: empty
-    assert not fuse([x], mesh.bounds).contains(pts).any()  # x alone: the rule drops the fill
+    assert not fuse([x], mesh.bounds).contains(pts).any()  # x alone: the fill is dropped
     assert fuse([z], mesh.bounds).contains(pts).all()  # z alone fills the pocket
     fused = fuse([z, x], mesh.bounds)
     assert not fused.contains(pts).any()

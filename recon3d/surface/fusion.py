@@ -83,8 +83,8 @@ class FusionSettings:
         against another family's empty only as far as that family's planes do *not*
         contradict it; where they do, it is at most ``cap`` x that family's weight.
         Measured (``bench/surface_cases.py``, z+x F@1%, the rule off with
-        ``ConfidenceSettings.unswept_reach`` 8 -> on with it unbounded): the Ravens cup 0.9165 -> 0.9207,
-        ``trimesh_idler_riser`` 0.9718 -> 0.9801, ``mushroom`` 0.9737 -> 0.9794,
+        ``ConfidenceSettings.unswept_reach`` 8 -> on with it unbounded): the Ravens cup
+        0.9165 -> 0.9207, ``trimesh_idler_riser`` 0.9718 -> 0.9801, ``mushroom`` 0.9737 -> 0.9794,
         ``featuretype`` 0.9342 -> 0.9388, ``cup_handle`` 0.9964 -> 0.9995; ``comb`` 0.8416
         -> 0.8392 (x alone 0.482), the open teapot 0.8858 -> 0.8850 (with the reach of 8
         steps it fell to 0.8806: z's channels between its unknown chords, counted as shown

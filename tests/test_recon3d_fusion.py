@@ -89,11 +89,13 @@ def test_fusion_gains_the_through_hole_only_the_other_axis_sees():
     fused = fuse([z, x], mesh.bounds)
     assert fused.is_watertight
     assert _topology(fused) == (1, 1)  # the bore, seen empty by x, stays open
-    # a family's filled-in space counts as seen: x cannot open the bore against z
+    # a family's filled-in space counts as seen, and does not yield to the other family's
+    # sensed empty (FusionSettings.filled off): x cannot open the bore against z
     blind = ConfidenceSettings(unseen=1.0)
     zb = _solid(mesh, "z", 8, 0.3, trust=blind)
     xb = _solid(mesh, "x", 12, 0.3, trust=blind)
-    assert _topology(fuse([zb, xb], mesh.bounds)) == (1, 0)
+    assert _topology(fuse([zb, xb], mesh.bounds, "weighted",
+                          FusionSettings(filled=False))) == (1, 0)
 
 
 def test_fused_faces_on_slice_planes_keep_their_sensed_label():

@@ -32,7 +32,11 @@ little does not join a wide fill to that wall):
 of the capped value, chosen to cross 0 at ``at`` x the gap from that slice, and the alignment
 pairs no boundary sample of the capped component. A slice whose fill (empty) is capped
 towards **both** neighbours drops (fills) it on its own plane too (:func:`own_caps`):
-otherwise a flat plate of surface stays on the plane. The end slices keep theirs.
+otherwise a flat plate of surface stays on the plane. The end slices keep theirs. There the
+slice's confidence (for fusing families, :mod:`recon3d.surface.confidence`) becomes at least
+its neighbours' mean (``own_trust``): the dropped value is their sensing, not the chord's
+'unseen' fill, so another family's filled-in solid does not put the plate back (the Ravens
+cup along z+x: a plate across the cavity on an x plane).
 """
 from __future__ import annotations
 
@@ -72,6 +76,10 @@ class CapSettings:
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
+    own_trust : bool -- there the slice's confidence (for fusing families) becomes at least
+        the mean of its neighbours': the value is their say (off: the slice keeps the
+        'unseen' trust of its chord's fill, and another family's filled-in solid outweighs
+        the dropped fill on the plane -- a plate across the Ravens cup's cavity along x).
     """
 
     enabled: bool = True
@@ -80,6 +88,7 @@ class CapSettings:
     at: float = 0.0
     thin: int = 2
     own: bool = True
+    own_trust: bool = True
     deep: float = 1.0
     slits: bool = False
     enclosed: float = 0.25

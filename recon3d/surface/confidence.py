@@ -55,10 +55,12 @@ class ConfidenceSettings:
     facing_floor : float -- least facing weight (a lid between slices, seen by no family).
     unswept : bool -- outside a region, space whose nearest piece is an unknown chord counts
         ``unseen`` (:func:`unswept`), not shown empty, up to ``unswept_reach`` steps from it
-        (``bench/surface_cases.py``, F@1%: 4 / 8 / 12 / unbounded steps give the open
-        teapot's z+x 0.8722 / 0.8858 / 0.8896 / 0.8895, the Ravens cup's 0.8821 / 0.8815 /
-        0.8805 / 0.8775 (0.8834 without the rule): its x planes leave its deep cavity empty
-        beside chords on the cavity's floor, and the cavity is there).
+        (unbounded by default). Measured (``bench/surface_cases.py``, z+x F@1%): before the
+        fusion's filled-in rule (``FusionSettings.filled``) and the own-capped slice's trust
+        (``CapSettings.own_trust``), 4 / 8 / 12 / unbounded steps gave the open teapot
+        0.8722 / 0.8858 / 0.8896 / 0.8895 and the Ravens cup 0.8821 / 0.8815 / 0.8805 /
+        0.8775, so 8 was kept; with both, 8 / unbounded give the teapot 0.8806 / 0.8850 (x
+        alone 0.8858) and the Ravens cup 0.9247 / 0.9207 (z alone 0.9182).
     """
 
     near: float = 24.0
@@ -70,7 +72,7 @@ class ConfidenceSettings:
     facing: float = 0.0
     facing_floor: float = 0.05
     unswept: bool = True
-    unswept_reach: float = 8.0
+    unswept_reach: float = float("inf")
 
 
 def seen_map(region, f: np.ndarray, grid, settings: ConfidenceSettings = ConfidenceSettings()

@@ -169,6 +169,19 @@ def slice_sdf(region, grid: FamilyGrid) -> np.ndarray:
     return np.where(inside, d, -d).astype(np.float32)
 
 
+def _neighbours_say(seen: list, f: list, f0: list) -> list:
+    """The slices' confidence maps, with the mean of the two neighbours' where
+    :func:`recon3d.surface.caps.own_caps` changed a slice's own field (``f`` against ``f0``):
+    the value there is the neighbours' say, so is the trust."""
+    out = list(seen)
+    for i in range(1, len(f) - 1):
+        if f[i] is not f0[i]:
+            changed = f[i] != f0[i]
+            mean = 0.5 * (seen[i - 1] + seen[i + 1])
+            out[i] = np.where(changed, np.maximum(seen[i], mean), seen[i]).astype(np.float32)
+    return out
+
+
 def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bool = False,
                   warp: WarpSettings = WarpSettings(),
                   trust: ConfidenceSettings = ConfidenceSettings(),
@@ -206,7 +219,10 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     capped = [cap_unsensed(np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t), regions[i],
                            regions[i + 1], grid, float(gaps[i]), caps) if warped else None
               for i, t in enumerate(clip)]
-    f = own_caps(f, capped, grid.step) if warped and caps.own else f
+    if warped and caps.own:
+        f, f0 = own_caps(f, capped, grid.step), f
+        if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
+            seen = _neighbours_say(seen, f, f0)  # showed empty (solid), they are its sensing
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
         gap, t, cap = float(gaps[i]), clip[i], capped[i]

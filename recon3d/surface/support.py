@@ -32,7 +32,7 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
 
-__all__ = ["plane_points", "contradiction", "sensed_solid"]
+__all__ = ["plane_points", "contradiction", "sensed_solid", "filled_in", "solid_shares"]
 
 
 def plane_points(ff, i: int) -> np.ndarray:
@@ -55,27 +55,69 @@ def _blend(planes, g) -> np.ndarray:
     return out
 
 
+def _inside_depths(ff, i: int):
+    """Slice ``i``'s nodes inside its region: flat indices (m,), distance to the nearest traced
+    piece (W1, W2) and to the nearest closed one (W3, unknown chord, bridge), (m,) each."""
+    g, region = ff.grid, ff.regions[i]
+    nodes = g.nodes()
+    sel = np.flatnonzero(ff.vol[g.slice_layer(i)].ravel() > 0)
+    traced = [p for p in region.pieces if p.kind in ("W1", "W2")]
+    closed = [p for p in region.pieces if p.kind not in ("W1", "W2")]
+    far = np.full(len(sel), np.inf)
+    dt = (cKDTree(sample_pieces(traced, g.step / 2)[0]).query(nodes[sel])[0]
+          if traced and len(sel) else far)
+    dc = (cKDTree(sample_pieces(closed, g.step / 2)[0]).query(nodes[sel])[0]
+          if closed and len(sel) else far)
+    return sel, dt, dc
+
+
+def _per_plane(ff, *values) -> list[np.ndarray]:
+    """Per function ``value(dt, dc)``: a (layers, ny, nx) float32 map of its value on each
+    slice's inside nodes (0 outside), blended linearly between slices (one pass)."""
+    g = ff.grid
+    nx, ny = g.shape
+    planes = [[] for _ in values]
+    for i in range(len(ff.regions)):
+        sel, dt, dc = _inside_depths(ff, i)
+        for out, value in zip(planes, values):
+            m = np.zeros(nx * ny, dtype=np.float32)
+            m[sel] = value(dt, dc)
+            out.append(m.reshape(ny, nx))
+    return [_blend(p, g) for p in planes]
+
+
+def _sensed(dt, dc):
+    return np.isfinite(dt) & (dt <= dc)
+
+
+def _filled(depth: float):
+    return lambda dt, dc: np.where(dt <= dc, 1 - np.clip(2 - 2 * dt / depth, 0, 1), 1.0)
+
+
 def sensed_solid(ff) -> np.ndarray:
     """(layers, ny, nx) float32 in [0, 1]: 1 inside a slice's region where its nearest piece
     is a traced wall (W1, W2), 0 elsewhere (outside, or closed by a W3 lid, an unknown chord,
     a bridge), blended linearly between slices."""
-    g = ff.grid
-    nx, ny = g.shape
-    nodes = g.nodes()
-    planes = []
-    for i, region in enumerate(ff.regions):
-        inside = ff.vol[g.slice_layer(i)].ravel() > 0
-        traced = [p for p in region.pieces if p.kind in ("W1", "W2")]
-        closed = [p for p in region.pieces if p.kind not in ("W1", "W2")]
-        m = np.zeros(len(nodes), dtype=np.float32)
-        sel = np.flatnonzero(inside)
-        if traced and len(sel):
-            dt = cKDTree(sample_pieces(traced, g.step / 2)[0]).query(nodes[sel])[0]
-            dc = (cKDTree(sample_pieces(closed, g.step / 2)[0]).query(nodes[sel])[0]
-                  if closed else np.full(len(sel), np.inf))
-            m[sel] = dt <= dc
-        planes.append(m.reshape(ny, nx))
-    return _blend(planes, g)
+    return _per_plane(ff, _sensed)[0]
+
+
+def filled_in(ff, depth: float = 4.0) -> np.ndarray:
+    """(layers, ny, nx) float32 in [0, 1]: how much of a slice's solid it only filled in.
+
+    Inside a slice's region: 0 up to ``depth / 2`` grid steps behind a traced wall (W1, W2;
+    the contact showed material there), rising linearly to 1 at ``depth`` steps (how deep the
+    material goes the probe never felt: a thin wall round a cavity enclosed in the plane,
+    which the closure fills, reads the same), and 1 where a W3 lid, an unknown chord or a
+    bridge is the nearest piece; 0 outside. Blended linearly between slices. The same depth
+    ramp as the family's confidence (:func:`recon3d.surface.confidence.seen_map`).
+    """
+    return _per_plane(ff, _filled(ff.grid.step * depth))[0]
+
+
+def solid_shares(ff, depth: float = 4.0) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sensed_solid` and :func:`filled_in` of one family, in one pass."""
+    a, b = _per_plane(ff, _sensed, _filled(ff.grid.step * depth))
+    return a, b
 
 
 def contradiction(ff, others, sample, grow: float = 2.0) -> np.ndarray:

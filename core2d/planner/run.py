@@ -45,13 +45,14 @@ from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING, Flow
-from core2d.planner.grazing import beyond_ends
+from core2d.planner.grazing import beyond_ends, end_radius
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
-from core2d.planner.tracing import attach_pivot_G, plan_sides, split_contact, trace_side
+from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, split_contact,
+                                    trace_side)
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
@@ -231,9 +232,10 @@ class Exploration:
         reading, G, why = initial_pass(probe, area, G)
         if reading is None:
             return self.defer(area, why)
-        c = reading.tip_contact.point
-        pose_c = Posture(reading.joint, reading.direction)
-        if _same(c, area.a, same) or _same(c, area.b, same):
+        # C read again where the probe stands (a fine noisy sensor; reread_pass)
+        c, pose_c = reread_pass(probe, reading)
+        end = end_radius(self.res) * self.flow.same
+        if _same(c, area.a, end) or _same(c, area.b, end):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
         if self.flow.map and beyond_ends(self.res, area.a, area.b, c):

@@ -36,6 +36,12 @@ all are off with a perfect sensor (the paper's flow is unchanged):
   which a point is on recorded contour -- meets the same contour, and is
   not made (it counts as a pass that found nothing and ended at no end).
 
+And :func:`end_radius` (:func:`resolves_half_eps`): whether a pass's contact
+is A_i or B_i again is decided at the paper's eps/2, not at the same-contact
+radius widened by the jitter, and the pass's contact is the mean of
+repeated readings (:func:`core2d.planner.tracing.reread_pass`): the landings
+of grazing passes between eps/2 and eps/2 + jitter from an end split the lid.
+
 :func:`resolves_half_eps`: the last two rules act only while two readings of
 one point lie within the paper's same-point radius (jitter <= eps/2 - tol).
 A blocker's disc (radius ``near`` = 2 tol + jitter) then spans at most

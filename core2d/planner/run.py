@@ -56,7 +56,7 @@ from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, spl
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
-__all__ = ["explore", "Exploration", "Budget"]
+__all__ = ["explore", "Exploration", "Budget", "back_at"]
 
 #: generations in a row without new traced contour before §4.4 escape
 STALE = 3
@@ -113,6 +113,26 @@ def _single_detection(probe: Robot, pose, area):
     if _reestablish(probe, shifted).tip_contact is None:
         return None, False
     return pivot_G(probe, RIGHT if side > 0 else LEFT), True
+
+
+def back_at(res, reading, d_i) -> bool:
+    """``reading`` (Reading, after the insertion), ``d_i`` (2,) float. Is the probe, brought back along the posture that stood at D_i to
+    trace the other side (Theorem 4), on D_i again? With a perfect sensor:
+    a tip contact. With a noisy one the tip contact must also lie within
+    the same-contact radius of D_i: the recorded posture is a reading, off
+    by the noise, and the probe reached D_i by the bisection's swings, so
+    the straight insertion along it can stop on a corner the posture
+    grazed (the body contact of Y1 = 2) -- the trace then started there
+    and its first step made a W1 segment through material
+    (``textured_pocket`` z0 and z6 at sigma 0.1 eps: 53 eps long, 7.6 eps
+    deep). Not back at D_i, the side is registered unknown (``limit``).
+    Only while :func:`~core2d.planner.grazing.resolves_half_eps` (measured
+    there; at sigma 0.3 eps the same W1 was seen on ``twin_posts`` and
+    ``mushroom`` z4, not measured with this test)."""
+    tip = reading.tip_contact
+    if tip is None:
+        return False
+    return not resolves_half_eps(res) or magnitude(tip.point - d_i) <= res.tip_zone
 
 
 class Exploration:
@@ -276,25 +296,6 @@ class Exploration:
                 Area(c, area.b, pose_c, area.pose_b, area.index, rule, d)]
         self.children(area, kids)
 
-    def _back_at(self, reading, d_i) -> bool:
-        """Is the probe, brought back along the posture that stood at D_i to
-        trace the other side (Theorem 4), on D_i again? With a perfect sensor:
-        a tip contact. With a noisy one the tip contact must also lie within
-        the same-contact radius of D_i: the recorded posture is a reading, off
-        by the noise, and the probe reached D_i by the bisection's swings, so
-        the straight insertion along it can stop on a corner the posture
-        grazed (the body contact of Y1 = 2) -- the trace then started there
-        and its first step made a W1 segment through material
-        (``textured_pocket`` z0 and z6 at sigma 0.1 eps: 53 eps long, 7.6 eps
-        deep). Not back at D_i, the side is registered unknown (``limit``).
-        Only while :func:`~core2d.planner.grazing.resolves_half_eps` (measured
-        there; at sigma 0.3 eps the same W1 was seen on ``twin_posts`` and
-        ``mushroom`` z4, not measured with this test)."""
-        tip = reading.tip_contact
-        if tip is None:
-            return False
-        return not resolves_half_eps(self.res) or magnitude(tip.point - d_i) <= self.res.tip_zone
-
     def trace(self, area, G, joint_i, local):
         probe = self.probe
         probe.note_phase("tracing", area.index)
@@ -310,7 +311,7 @@ class Exploration:
             if self.flow.detection:
                 attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
-            if k and not self._back_at(_reestablish(probe, pose_d), local.point):
+            if k and not back_at(self.res, _reestablish(probe, pose_d), local.point):
                 kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
                                      area.pose_a if not toward_B else area.pose_b,
                                      not toward_B, area.index, "limit", area.depth + 1))

@@ -116,8 +116,9 @@ def _single_detection(probe: Robot, pose, area):
 
 
 def back_at(res, reading, d_i) -> bool:
-    """``reading`` (Reading, after the insertion), ``d_i`` (2,) float. Is the probe, brought back along the posture that stood at D_i to
-    trace the other side (Theorem 4), on D_i again? With a perfect sensor:
+    """Is the probe, brought back along the posture that stood at D_i to
+    trace the other side (Theorem 4), on D_i again? ``reading``: the
+    insertion's Reading; ``d_i``: (2,) float. With a perfect sensor:
     a tip contact. With a noisy one the tip contact must also lie within
     the same-contact radius of D_i: the recorded posture is a reading, off
     by the noise, and the probe reached D_i by the bisection's swings, so

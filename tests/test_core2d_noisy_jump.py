@@ -15,10 +15,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d import SensorModel, sense_slice
-from core2d.planner.tracing import reread_jump
+from core2d import SensorModel
+import pytest
+
+from core2d.planner.tracing import reread_jump, reread_pass
 from core2d.sim.probe import Probe
-from core2d.truth.metrics import sensor_metrics
+from noisy_runs import coverages
 from outlines import slotted_block
 from slicer.contact.exact import ExactContact
 
@@ -32,19 +34,7 @@ def _slotted():
 
 
 def test_slots_narrower_than_eps_at_sigma_01_eps():
-    loops, ws = _slotted()
-    contact = ExactContact(loops)
-    base = sense_slice(contact, ws, 1.0)
-    assert sensor_metrics(loops, base, 1.0, 0.0)["coverage_sensor"] >= 0.99
-    covs = []
-    for seed in range(16):
-        res = sense_slice(contact, ws, 1.0, sensor=SensorModel.of_eps(1.0, NOISE, 0.0, seed))
-        m = sensor_metrics(loops, res, 1.0, NOISE)
-        assert not res.stats.budget_hit, f"seed {seed}"
-        assert m["precision_sensor"] >= 0.98, f"seed {seed}: {m['precision_sensor']:.4f}"
-        assert m["w3_unsound_count_sensor"] == 0, f"seed {seed}"
-        assert res.stats.motions <= 2 * base.stats.motions, (seed, res.stats.motions)
-        covs.append(m["coverage_sensor"])
+    covs = coverages(*_slotted(), NOISE, range(16))
     assert np.mean(covs) >= 0.91, np.round(covs, 3)
 
 
@@ -57,13 +47,15 @@ def _touching(sensor):
     return probe, probe.insert()
 
 
-def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact():
+@pytest.mark.parametrize("reread", [reread_jump, reread_pass])
+def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact(reread):
+    """P_2nd of a jump (reread_jump) and a pass's contact C (reread_pass) alike."""
     truth = np.array([3.0, 22.0])
     one, mean = [], []
     for seed in range(20):
         probe, r = _touching(SensorModel.of_eps(1.0, NOISE, 0.0, seed))
         motions = probe.motions
-        p2, pose = reread_jump(probe, r)
+        p2, pose = reread(probe, r)
         assert probe.motions == motions  # re-reading is no motion
         assert abs(np.hypot(*pose.direction) - 1.0) < 1e-12
         one.append(np.hypot(*(r.tip_contact.point - truth)))
@@ -71,13 +63,14 @@ def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact():
     assert np.mean(mean) < 0.4 * np.mean(one), (np.mean(mean), np.mean(one))
 
 
-def test_reread_jump_keeps_a_perfect_or_a_coarse_reading():
+@pytest.mark.parametrize("reread", [reread_jump, reread_pass])
+def test_reread_jump_keeps_a_perfect_or_a_coarse_reading(reread):
     """A perfect sensor, and one whose readings of one point do not resolve
     eps/2 (sigma 0.3 eps, taxels 0.25 eps): the jump's own reading, no re-read."""
     for sensor in (None, SensorModel.of_eps(1.0, 0.3, 0.25, 0)):
         probe, r = _touching(sensor)
         state = None if sensor is None else probe.sensor.rng.bit_generator.state
-        p2, pose = reread_jump(probe, r)
+        p2, pose = reread(probe, r)
         assert p2 is r.contacts[0].point and np.array_equal(pose.joint, r.joint)
         if sensor is not None:  # no reading drawn
             assert probe.sensor.rng.bit_generator.state == state

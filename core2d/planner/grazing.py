@@ -36,6 +36,12 @@ all are off with a perfect sensor (the paper's flow is unchanged):
   which a point is on recorded contour -- meets the same contour, and is
   not made (it counts as a pass that found nothing and ended at no end).
 
+And :func:`end_radius` (:func:`resolves_half_eps`): whether a pass's contact
+is A_i or B_i again is decided at the paper's eps/2, not at the same-contact
+radius widened by the jitter, and the pass's contact is the mean of
+repeated readings (:func:`core2d.planner.tracing.reread_pass`): the landings
+of grazing passes between eps/2 and eps/2 + jitter from an end split the lid.
+
 :func:`resolves_half_eps`: the last two rules act only while two readings of
 one point lie within the paper's same-point radius (jitter <= eps/2 - tol).
 A blocker's disc (radius ``near`` = 2 tol + jitter) then spans at most
@@ -54,13 +60,45 @@ import numpy as np
 from core2d.planner.regions import cross
 from core2d.resolution import Resolution
 
-__all__ = ["beyond_ends", "steep_enough", "resolves_half_eps", "crosses_lid", "Blockers"]
+__all__ = ["beyond_ends", "steep_enough", "resolves_half_eps", "end_radius", "crosses_lid",
+           "Blockers"]
 
 
 def resolves_half_eps(res: Resolution) -> bool:
     """0 < jitter <= eps/2 - tol: a noisy sensor whose two readings of one
     point stay within the paper's same-point radius eps/2."""
     return 0.0 < res.jitter <= res.eps / 2.0 - res.tol
+
+
+def end_radius(res: Resolution) -> float:
+    """Within what distance of A_i or B_i a pass's contact is that end again,
+    not a new contact on C_{A_i}^{B_i} (Theorem 1's pass, the §4.4 escape,
+    a revisit pass), and how far from the touched ends a line through the
+    lid must pass to count in the W3 proof.
+
+    The paper's radius is eps/2. A noisy sensor's same-contact radius
+    (:attr:`~core2d.resolution.Resolution.tip_zone`) adds the jitter so that
+    two readings of one point stay one contact. While
+    :func:`resolves_half_eps` (jitter <= eps/2 - tol), two readings of one
+    point already lie within eps/2 - tol of each other, so eps/2 tells a
+    re-reading of an end from a new contact: eps/2 is returned. The wider
+    radius discarded real contacts: in a pocket one to three eps wide every
+    pass meets the wall at a few degrees and lands about sigma / tan(alpha)
+    from where it crossed the lid, often between eps/2 and eps/2 + jitter
+    from an end; such a lid ended unknown where the paper's radius splits
+    it ((A_i, C) W2, §3.1) and the wall is covered (the ``comb`` and
+    ``star`` outlines at sigma 0.1 eps). And a lid shorter than twice the
+    radius left no line to check, so the W3 proof held for any lid between
+    eps + jitter (W2 below) and eps + 2 jitter long, whatever lay behind it.
+    Beyond :func:`resolves_half_eps`, and for perfect sensing (where both
+    are eps/2), :attr:`~core2d.resolution.Resolution.tip_zone`.
+
+    >>> end_radius(Resolution.of(1.0, noise=0.1)), end_radius(Resolution.of(1.0))
+    (0.5, 0.5)
+    >>> round(end_radius(Resolution.of(1.0, noise=0.3)), 3)
+    1.773
+    """
+    return res.eps / 2.0 if resolves_half_eps(res) else res.tip_zone
 
 
 def beyond_ends(res: Resolution, a, b, point) -> bool:

@@ -73,8 +73,9 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
-from core2d.planner.grazing import Blockers, beyond_ends, steep_enough
+from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.regions import Posture, cross, near_probe
+from core2d.planner.tracing import reread_pass
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
@@ -166,7 +167,7 @@ def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
-    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=run.res.tip_zone,
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=end_radius(run.res),
                                 min_gap=run.angle_tol)
 
 
@@ -214,8 +215,8 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     map, within the lid's reach (:func:`in_reach`, with a noisy sensor and
     the probe's ``joint`` given), and not making a child that repeats the A and B of
     an ancestor (§4.4)?"""
-    same = run.res.tip_zone
-    if _near_end(run, area, point) or run.known.distance(point) <= run.res.near:
+    same = end_radius(run.res)
+    if _near_end(run, area, point, same) or run.known.distance(point) <= run.res.near:
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False
@@ -303,19 +304,18 @@ def revisit_one(run: Exploration, area):
         probe.approach(point, direction)
         r = probe.insert(2.5 * probe.radius)
         c = r.tip_contact
-        if c is not None and _new_contact(run, area, c.point, r.joint):
-            pose_c = Posture(r.joint, r.direction)
-            d, seen = area.depth + 1, area.seen + (c.point,)
-            kids = [Area(area.a, c.point, area.pose_a, pose_c, area.index, "revisit", d,
-                         seen=seen),
-                    Area(c.point, area.b, pose_c, area.pose_b, area.index, "revisit", d,
-                         seen=seen)]
+        if c is not None:  # read again where the probe stands (reread_pass)
+            c, pose_c = reread_pass(probe, r)
+        if c is not None and _new_contact(run, area, c, pose_c.joint):
+            d, seen = area.depth + 1, area.seen + (c,)
+            kids = [Area(area.a, c, area.pose_a, pose_c, area.index, "revisit", d, seen=seen),
+                    Area(c, area.b, pose_c, area.pose_b, area.index, "revisit", d, seen=seen)]
             return run.children(area, kids)
         area.tries += 1
         escaped |= c is None
-        ends_only &= c is not None and _near_end(run, area, c.point, run.res.sensor_tol)
-        if c is not None and not _near_end(run, area, c.point):
-            blockers.add(area.a, area.b, r.joint, c.point)
+        ends_only &= c is not None and _near_end(run, area, c, run.res.sensor_tol)
+        if c is not None and not _near_end(run, area, c):
+            blockers.add(area.a, area.b, pose_c.joint, c)
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "

@@ -45,17 +45,18 @@ from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.flow import PULLING, Flow
-from core2d.planner.grazing import beyond_ends
+from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
-from core2d.planner.tracing import attach_pivot_G, plan_sides, split_contact, trace_side
+from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, split_contact,
+                                    trace_side)
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
-__all__ = ["explore", "Exploration", "Budget"]
+__all__ = ["explore", "Exploration", "Budget", "back_at"]
 
 #: generations in a row without new traced contour before §4.4 escape
 STALE = 3
@@ -112,6 +113,27 @@ def _single_detection(probe: Robot, pose, area):
     if _reestablish(probe, shifted).tip_contact is None:
         return None, False
     return pivot_G(probe, RIGHT if side > 0 else LEFT), True
+
+
+def back_at(res, reading, d_i) -> bool:
+    """Is the probe, brought back along the posture that stood at D_i to
+    trace the other side (Theorem 4), on D_i again? ``reading``: the
+    insertion's Reading; ``d_i``: (2,) float. With a perfect sensor:
+    a tip contact. With a noisy one the tip contact must also lie within
+    the same-contact radius of D_i: the recorded posture is a reading, off
+    by the noise, and the probe reached D_i by the bisection's swings, so
+    the straight insertion along it can stop on a corner the posture
+    grazed (the body contact of Y1 = 2) -- the trace then started there
+    and its first step made a W1 segment through material
+    (``textured_pocket`` z0 and z6 at sigma 0.1 eps: 53 eps long, 7.6 eps
+    deep). Not back at D_i, the side is registered unknown (``limit``).
+    Only while :func:`~core2d.planner.grazing.resolves_half_eps` (measured
+    there; at sigma 0.3 eps the same W1 was seen on ``twin_posts`` and
+    ``mushroom`` z4, not measured with this test)."""
+    tip = reading.tip_contact
+    if tip is None:
+        return False
+    return not resolves_half_eps(res) or magnitude(tip.point - d_i) <= res.tip_zone
 
 
 class Exploration:
@@ -231,9 +253,10 @@ class Exploration:
         reading, G, why = initial_pass(probe, area, G)
         if reading is None:
             return self.defer(area, why)
-        c = reading.tip_contact.point
-        pose_c = Posture(reading.joint, reading.direction)
-        if _same(c, area.a, same) or _same(c, area.b, same):
+        # C read again where the probe stands (a fine noisy sensor; reread_pass)
+        c, pose_c = reread_pass(probe, reading)
+        end = end_radius(self.res) * self.flow.same
+        if _same(c, area.a, end) or _same(c, area.b, end):
             # within eps/2 of A_i or B_i: the same contact at the paper's resolution
             return self.defer(area, "Theorem 1 pass found no new contact")
         if self.flow.map and beyond_ends(self.res, area.a, area.b, c):
@@ -289,7 +312,7 @@ class Exploration:
             if self.flow.detection:
                 attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
-            if k and _reestablish(probe, pose_d).tip_contact is None:
+            if k and not back_at(self.res, _reestablish(probe, pose_d), local.point):
                 kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
                                      area.pose_a if not toward_B else area.pose_b,
                                      not toward_B, area.index, "limit", area.depth + 1))

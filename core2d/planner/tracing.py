@@ -25,7 +25,7 @@ from core2d.planner.robot import Robot
 from core2d.readings import LEFT, RIGHT, TIP
 
 __all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal",
-           "reread_jump"]
+           "reread_jump", "reread_pass"]
 
 #: a W1 step longer than eps / 4 turning left (concave) by more than this hides contour
 HOP_TURN = np.pi / 4
@@ -122,6 +122,27 @@ def reread_jump(probe: Robot, r):
             dirs.append(x.direction)
     d = np.sum(dirs, axis=0)
     return np.mean(pts, axis=0), Posture(np.mean(joints, axis=0), d / np.hypot(*d))
+
+
+def reread_pass(probe: Robot, r):
+    """The tip contact C of a pass (Theorem 1's pass, the §4.4 escape, a
+    revisit pass) and the posture that touched it, read again where the
+    probe stopped like P_2nd (:func:`reread_jump`: the means of
+    :attr:`~core2d.resolution.Resolution.contact_reads` readings, only while
+    the sensor resolves eps/2; else the one reading). Returns
+    ``((2,) float C, Posture)``; ``r`` must hold a tip contact.
+
+    Why: C becomes an end of the children A_iC and CB_i, and with a fine
+    noisy sensor the next pass through such a lid, laid along a pocket's
+    wall and crossed at a few degrees, meets the wall about
+    offset / tan(alpha) from where it crossed, the offset being how far the
+    lid's ends are read off the wall: a fifth of it (the mean of 25
+    readings) keeps the §4.4 escape's halving going as with a perfect
+    sensor. Measured with :func:`~core2d.planner.grazing.end_radius`, see it."""
+    tip = r.tip_contact
+    if r.contacts[0] is tip:
+        return reread_jump(probe, r)
+    return tip.point, Posture(r.joint, r.direction)
 
 
 def _on_probe(point, probe: Robot) -> bool:

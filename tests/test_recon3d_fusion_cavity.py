@@ -94,8 +94,9 @@ def _genus(mesh):
 def test_a_solid_only_filled_in_yields_where_the_other_familys_planes_saw_it_empty():
     """A block with a bore along z: z fills the bore (a hole in its planes), x's planes see
     it. With every family's filled-in space trusted as if seen (``unseen=1``), the weights
-    alone keep z's fill; ``FusionSettings(filled=True)`` lets it yield where x's planes
-    contradict it, and the bore opens as in the truth (genus by manifold3d)."""
+    alone keep z's fill; the default fusion (``FusionSettings()``, ``filled`` on) lets it
+    yield where x's planes contradict it, and the bore opens as in the truth (genus by
+    manifold3d)."""
     bore = trimesh.creation.cylinder(5.0, 40.0, sections=32)
     mesh = trimesh.creation.box((40.0, 30.0, 20.0)).difference(bore, engine="manifold")
     blind = ConfidenceSettings(unseen=1.0)
@@ -107,7 +108,7 @@ def test_a_solid_only_filled_in_yields_where_the_other_familys_planes_saw_it_emp
         solids.append(family_solid(regs, [c.plane for c in cuts], 0.3, keep_field=True,
                                    trust=blind))
     assert _genus(mesh) == 1
-    assert _genus(fuse(solids, mesh.bounds, "weighted", FusionSettings(filled=True))) == 1
+    assert _genus(fuse(solids, mesh.bounds, "weighted", FusionSettings())) == 1
     assert _genus(fuse(solids, mesh.bounds, "weighted", FusionSettings(filled=False))) == 0
 
 

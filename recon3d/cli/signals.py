@@ -8,6 +8,11 @@ was writing, the output directory lock removes a directory the run created.
 :func:`interrupted_line` and :func:`exit_status` are what ``main`` reports;
 :func:`closed_stdout` ends a command whose stdout reader went away.
 
+A signal that arrives while Python code runs where a raised exception would be
+printed and dropped (a ctypes callback LLVM makes during a numba compile, a
+``__del__``: :func:`would_be_lost`) is sent again a moment later instead, so
+it still stops the command.
+
 A process forked while the handlers are installed (a sensing worker, before
 its own set-up resets them) does not raise: it takes the signal's default
 action, as if no handler were installed.
@@ -21,7 +26,7 @@ import sys
 import threading
 
 __all__ = ["Interrupted", "interrupts", "interrupted_line", "exit_status", "closed_stdout",
-           "SIGNALS"]
+           "would_be_lost", "SIGNALS"]
 
 SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 """The signals that stop a command cleanly."""
@@ -38,11 +43,49 @@ class Interrupted(KeyboardInterrupt):
         self.signum = int(signum)
 
 
+RETRY = 0.05
+"""Seconds after which a signal that arrived where an exception would be lost is sent again."""
+
+
+def _callback_codes() -> tuple:
+    """Code objects of the Python functions C calls back into during a numba compile
+    (llvmlite's object-cache hooks), when llvmlite is loaded."""
+    engine = sys.modules.get("llvmlite.binding.executionengine")
+    if engine is None:
+        return ()
+    ee = engine.ExecutionEngine
+    return (ee._raw_object_cache_notify.__code__, ee._raw_object_cache_getbuffer.__code__)
+
+
+def would_be_lost(frame) -> bool:
+    """Whether an exception raised in ``frame`` would be printed and dropped, not propagated.
+
+    A ctypes callback (llvmlite's object-cache hooks, which LLVM calls while numba
+    compiles) and a finalizer (``__del__``) print what they raise ("Exception ignored
+    ...") and go on: an :class:`Interrupted` raised there would be lost and the command
+    would run on.
+
+    >>> would_be_lost(sys._getframe())
+    False
+    """
+    codes = _callback_codes()
+    while frame is not None:
+        if frame.f_code in codes or frame.f_code.co_name == "__del__":
+            return True
+        frame = frame.f_back
+    return False
+
+
 def _handler(owner: int):
     def handle(signum, frame):
         if os.getpid() != owner:  # a forked child that has not set its own handlers yet
             signal.signal(signum, signal.SIG_DFL)
             os.kill(os.getpid(), signum)
+            return
+        if would_be_lost(frame):  # raised here, it would vanish: ask again shortly
+            again = threading.Timer(RETRY, os.kill, (owner, signum))
+            again.daemon = True
+            again.start()
             return
         raise Interrupted(signum)
     return handle

@@ -111,6 +111,37 @@ def cases(args):
                     yield "meshes", f"{path.stem}:z{i}", _mesh_case, (str(path), count, i)
 
 
+def _quiet_repeats() -> None:
+    """Pool initializer: each distinct warning or log message once per worker process.
+
+    Every case of a mesh loads and slices it again, so its load warning (an open mesh) and
+    its nudged degenerate planes would be printed once per slice."""
+    import logging
+    import warnings
+
+    seen: set[str] = set()
+    show = warnings.showwarning
+
+    def once(message, category, filename, lineno, file=None, line=None):
+        key = f"{category.__name__}: {message}"
+        if key not in seen:
+            seen.add(key)
+            show(message, category, filename, lineno, file, line)
+
+    def first(record: logging.LogRecord) -> bool:
+        key = record.getMessage()
+        if key in seen:
+            return False
+        seen.add(key)
+        return True
+
+    warnings.showwarning = once
+    logging.getLogger().addFilter(first)
+    for handler in logging.getLogger().handlers:
+        handler.addFilter(first)
+    logging.lastResort.addFilter(first)
+
+
 def _run(job):
     group, name, fn, a, levels, budget = job
     t0 = time.perf_counter()
@@ -277,7 +308,7 @@ def main(argv=None) -> int:
           file=sys.stderr)
     t0 = time.perf_counter()
     rows = []
-    with ProcessPoolExecutor(args.jobs) as ex:
+    with ProcessPoolExecutor(args.jobs, initializer=_quiet_repeats) as ex:
         for k, got in enumerate(ex.map(_run, jobs, chunksize=1)):
             rows += got
             print(f"  [{k + 1}/{len(jobs)}] {jobs[k][1]}", file=sys.stderr, flush=True)

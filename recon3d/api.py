@@ -24,7 +24,7 @@ import trimesh
 import meshes
 from meshes.loading import open_edge_count
 from recon3d.checks import InputError, check_flag, check_out_dir
-from recon3d.config import RunConfig, diagonal, validate
+from recon3d.config import RunConfig, diagonal, resolve, validate
 from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import slices_png_bytes, write_outputs
@@ -36,6 +36,7 @@ from recon3d.score.evaluate import (classified_ground_truth, contour_cloud, cove
 from recon3d.score.report import chord_lines, slicing_text, surface_lines
 from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
+from recon3d.sensing.regions import RegionsAsSensed
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.surface.field import grid_step
 from recon3d.viz import blocks as scene, libs, plot
@@ -268,9 +269,19 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
         this one reconstructs and scores.
     """
     notes = list(notes)
+    # each slice's filled region is closed in this process as the slice comes back (it only
+    # waits for the workers); the reconstruction takes them as they are
+    regions = RegionsAsSensed(None if config.slices == "auto"
+                              else 2.0 * resolve(config, diagonal(mesh)).tol)
+
+    def sensed_one(srun: SliceRun) -> None:
+        regions.add(srun)
+        if progress is not None:
+            progress(srun)
+
     # pyvista (the reconstruction's flying edges, the scores' distances) and, for pictures,
     # its plotting are imported while the workers sense
-    sensed = sense_mesh(mesh, name, config, progress,
+    sensed = sense_mesh(mesh, name, config, sensed_one,
                         beside=plot.load_plotting if pictures else libs.pyvista)
     notes += sensed.nudge_notes
     drawing = side = None
@@ -283,7 +294,7 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
             side = Side(_classified_arrays, mesh, sensed)
         if stage is not None:
             stage("reconstructing")
-        recon = reconstruct(sensed)
+        recon = reconstruct(sensed, regions=regions.for_run(sensed))
         if stage is not None:
             stage("scoring")
         gt = None

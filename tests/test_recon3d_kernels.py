@@ -69,3 +69,41 @@ def test_warm_cache_no_notice_and_the_library_is_silent(one_run, tmp_path, capsy
     recon3d.run("fig17_pocket", slices=2, jobs=1)
     captured = capsys.readouterr()
     assert COMPILE_NOTICE not in captured.err + captured.out
+
+
+_TWO_KERNELS = '''
+from numba import njit
+
+
+@njit(cache=True)
+def pivot_like(x):
+    return x + 1
+
+
+@njit(cache=True)
+def search_like(x):
+    return x * 2
+'''
+
+
+def test_a_kernel_some_runs_never_compile_is_not_cold_once_its_file_is_cached(tmp_path,
+                                                                           monkeypatch):
+    """A kernel only some runs need (the pivot's ``search_from``) stays out of the cache after
+    a run without a pivot; it must not make every later run cold. Cold again when the file
+    changes; a file of its own with nothing cached stays cold."""
+    import importlib
+    from recon3d.sensing.kernels import cold_among
+
+    (tmp_path / "rf4_two.py").write_text(_TWO_KERNELS)
+    (tmp_path / "rf4_other.py").write_text(_TWO_KERNELS.replace("x * 2", "x * 3"))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    two, other = importlib.import_module("rf4_two"), importlib.import_module("rf4_other")
+    kernels = {"two.pivot": two.pivot_like.py_func, "two.search": two.search_like.py_func,
+               "other.search": other.search_like.py_func}
+    assert cold_among(kernels) == ["two.pivot", "two.search", "other.search"]
+    assert two.search_like(3) == 6  # compiled and saved: the run "without a pivot"
+    assert cold_among(kernels) == ["other.search"]  # two.pivot is not asked about
+    assert other.search_like(3) == 9
+    assert cold_among(kernels) == []
+    (tmp_path / "rf4_two.py").write_text(_TWO_KERNELS + "\n# changed\n")  # a new stamp
+    assert cold_among(kernels) == ["two.pivot", "two.search"]

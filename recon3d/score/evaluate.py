@@ -46,6 +46,7 @@ from scipy.spatial import cKDTree
 
 from recon3d.config import diagonal
 from recon3d.score.closest import mesh_distances
+from recon3d.score.subdivide import subdivide_to_size
 from recon3d.records import Family
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
@@ -243,7 +244,7 @@ def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
     """Ground truth subdivided to ``max_edge`` with a class per face
     (``face_attributes['coverage']`` (f,) int8, :meth:`ContourCloud.classify`): the part of
     :func:`coverage_mesh` that needs the sensing only, not the surface."""
-    v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
+    v, f = subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
     out.face_attributes["coverage"] = cloud.classify(out.triangles_center)
     return out

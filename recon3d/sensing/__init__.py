@@ -2,7 +2,8 @@
 
 One entry point, :func:`sense_mesh` (:mod:`.mesh`), for a uniform or an
 adaptive plan of planes (:mod:`.adaptive`); the per-slice work (:mod:`.worker`)
-and the process pool (:mod:`.pool`) are internal; a worker process that
+and the process pool (:mod:`.pool`) are internal, as are the slice regions closed in the main
+process as slices come back (:mod:`.regions`); a worker process that
 dies raises :class:`WorkerDied`; :func:`cold_kernels` (:mod:`.kernels`) says whether a run
 will first compile the numba kernels (read from numba's cache, nothing compiled).
 """

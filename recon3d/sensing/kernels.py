@@ -16,6 +16,15 @@ staleness rules as a compile) and calls a kernel cold when no entry fits this nu
 source, this machine and this bytecode. That is exactly when numba would compile it: no
 timing guess, a few milliseconds once the modules are imported.
 
+Some kernels are compiled only by the runs that need them (``search_from``: the pivot
+about the tip, Definition 1, which many scenes never make), so a scene without a pivot
+would leave that kernel out of the cache for good and every later run would be announced
+as compiling (and sense its first slice alone, :func:`recon3d.sensing.pool._compile_here`).
+A kernel out of the cache is therefore cold only when no kernel of its source file is
+cached: the file's kernels share its stamp, so one cached kernel says the file has not
+changed since the runs that compiled what they needed (:func:`cold_among`). The price: a
+run that first needs such a kernel compiles it (one small kernel) without the notice.
+
 Kernels of other paths (``slicer.contact.refine``, used by the batched Embree path and
 the exact backend) are not asked about: they are small, and a default run never compiles
 them, so asking would announce a compile on every run.
@@ -25,6 +34,7 @@ from __future__ import annotations
 import hashlib
 import importlib
 import pkgutil
+from collections.abc import Mapping
 
 import core2d
 import numba
@@ -33,7 +43,7 @@ from numba.core.dispatcher import Dispatcher
 
 from slicer.contact import embree_direct
 
-__all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_kernels", "load_numba_target"]
+__all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_among", "cold_kernels", "load_numba_target"]
 
 COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 10 s)…"
 """What ``recon3d run`` prints (stderr, not with ``--quiet``) when :func:`cold_kernels`."""
@@ -72,22 +82,30 @@ def _cached(py_func, magic: tuple) -> bool:
     return any(key[1] == magic and key[2][0] == code for key in index)
 
 
-def cold_kernels() -> list[str]:
-    """The kernels of :func:`sensing_kernels` that a run would compile (empty: all cached).
-
-    Reads numba's cache indexes only (module docstring); an error reading them counts as
-    cold (the notice is then at worst one line too many).
-    """
+def cold_among(kernels: Mapping[str, object]) -> list[str]:
+    """The names of ``kernels`` (name -> Python function of a ``cache=True`` dispatcher) that
+    a run would compile: not in numba's cache, and no kernel of the same source file in it
+    (module docstring). An error reading an index counts as not cached."""
     magic = numba.core.registry.cpu_target.target_context.codegen().magic_tuple()
-    cold = []
-    for name, py_func in sensing_kernels().items():
+    missing, warm_files = [], set()
+    for name, py_func in kernels.items():
         try:
             ok = _cached(py_func, magic)
         except Exception:  # noqa: BLE001 - an unreadable index: numba would recompile too
             ok = False
-        if not ok:
-            cold.append(name)
-    return cold
+        if ok:
+            warm_files.add(py_func.__code__.co_filename)
+        else:
+            missing.append(name)
+    return [name for name in missing
+            if kernels[name].__code__.co_filename not in warm_files]
+
+
+def cold_kernels() -> list[str]:
+    """The kernels of :func:`sensing_kernels` that a run would compile (empty: all cached;
+    :func:`cold_among`). Reads numba's cache indexes only; the notice is then at worst one
+    line too many."""
+    return cold_among(sensing_kernels())
 
 
 def load_numba_target() -> None:

@@ -46,7 +46,8 @@ class Reconstruction:
 def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
                 trust: ConfidenceSettings = ConfidenceSettings(),
                 blend: FusionSettings = FusionSettings(),
-                caps: CapSettings = CapSettings()) -> Reconstruction:
+                caps: CapSettings = CapSettings(),
+                regions: list[list[SliceRegion]] | None = None) -> Reconstruction:
     """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`.
 
     Parameters
@@ -59,14 +60,18 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     blend : FusionSettings -- parameters of the weighted fusion.
     caps : CapSettings -- with ``route='warp'``, space a slice only closed (unknown chords,
         bridges) ends at that slice between slices (:mod:`recon3d.surface.caps`).
+    regions : list of list of SliceRegion, optional -- every slice's
+        :func:`~recon3d.surface.closure.slice_region` (snap ``2 * run.tol``), per family,
+        already computed (e.g. as the slices were sensed); None: computed here.
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
     snap = 2.0 * run.tol
-    regions, solids, notes = [], [], []
-    for fam in run.families:
-        regs = [slice_region(s.result.w1, s.result.w2, s.result.w3, s.result.unknown, snap)
-                for s in fam.slices]
+    given, regions, solids, notes = regions, [], [], []
+    for f, fam in enumerate(run.families):
+        regs = (list(given[f]) if given is not None else
+                [slice_region(s.result.w1, s.result.w2, s.result.w3, s.result.unknown, snap)
+                 for s in fam.slices])
         regions.append(regs)
         if len(fam.slices) < 2:
             solids.append(None)

@@ -106,6 +106,26 @@ def test_coverage_png_shows_the_distance_colour_bar(saved):
         assert hit.sum(axis=1).max() >= 40, color  # a bin of the bar is ~50 px wide
 
 
+def test_colour_bar_and_its_title_are_backed_white(saved):
+    """The object may reach under the distance bar: its title and the bar get a white
+    backing, so no face runs through their text."""
+    import pyvista as pv
+
+    from recon3d.viz.plot import coverage_plotter
+
+    p = coverage_plotter(pv.read(saved / "scene.vtm"))
+    try:
+        texts = [a for r in p.renderers for a in r.GetActors2D()
+                 if a.IsA("vtkTextActor") and "F@1% counts" in (a.GetInput() or "")]
+        bars = [a for r in p.renderers for a in r.GetActors2D() if a.IsA("vtkScalarBarActor")]
+        assert len(texts) == 1 and len(bars) == 1
+        assert texts[0].GetTextProperty().GetBackgroundOpacity() > 0.5
+        assert texts[0].GetTextProperty().GetBackgroundColor() == (1.0, 1.0, 1.0)
+        assert bars[0].GetDrawBackground() and bars[0].GetBackgroundProperty().GetOpacity() > 0.5
+    finally:
+        p.close()
+
+
 def test_undercut_gets_w3_faces_over_unreachable_contour():
     """mushroom: the chamber behind the neck cannot be touched; W3 lids close
     it and the faces at the lids are labelled 3. Checked against the exact 2D

@@ -189,11 +189,12 @@ def _panel_b(p, gt):
         p.add_mesh(scored, scalars="distance", cmap=list(DISTANCE_COLORS), clim=[0, DISTANCE_MAX],
                    n_colors=len(DISTANCE_COLORS), above_color=DISTANCE_ABOVE, ambient=0.25,
                    show_scalar_bar=False)
-        p.add_text("distance to the surface, % of the diagonal (F@1% counts < 1)",
-                   position=(0.2, 0.135), viewport=True, font_size=9, color="black")
-        p.add_scalar_bar(" ", n_labels=7, fmt="%.1f", vertical=False, color="black",
-                         position_x=0.2, position_y=0.04, width=0.6, height=0.08,
-                         title_font_size=14, label_font_size=13, above_label="> 3")
+        title = p.add_text("distance to the surface, % of the diagonal (F@1% counts < 1)",
+                           position=(0.2, 0.135), viewport=True, font_size=9, color="black")
+        bar = p.add_scalar_bar(" ", n_labels=7, fmt="%.1f", vertical=False, color="black",
+                               position_x=0.2, position_y=0.04, width=0.6, height=0.08,
+                               title_font_size=14, label_font_size=13, above_label="> 3")
+        _white_behind(title, bar)
         entries.append(("beyond 3% of the diagonal", DISTANCE_ABOVE))
     elif scored.n_cells:
         p.add_mesh(scored, color="#9a9a9a", ambient=0.25)
@@ -205,6 +206,17 @@ def _panel_b(p, gt):
         entries.append(("outside the slab (not scored)", OUTSIDE_COLOR))
     _legend(p, entries)
     return pv
+
+
+def _white_behind(text, bar) -> None:
+    """A white backing behind the colour bar and its title, so that a part of the object
+    drawn under them does not run through their text."""
+    prop = text.GetTextProperty()
+    prop.SetBackgroundColor(1.0, 1.0, 1.0)
+    prop.SetBackgroundOpacity(0.85)
+    bar.DrawBackgroundOn()
+    bar.GetBackgroundProperty().SetColor(1.0, 1.0, 1.0)
+    bar.GetBackgroundProperty().SetOpacity(0.85)
 
 
 def headline_rows(lines, width: int = WIDTH) -> list[str]:

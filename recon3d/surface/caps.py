@@ -48,7 +48,8 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
 
-__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "own_caps"]
+__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "fill_towards",
+           "own_caps"]
 
 UNSENSED = ("unknown", "bridge")
 """Piece kinds no contact showed: the closure's chords of unknown areas and its bridges."""
@@ -76,6 +77,9 @@ class CapSettings:
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
+    runs : bool -- a fill closed by chords on a run of two or more slices in a row, which
+        the run's neighbouring slices show empty, is dropped on the run's slices
+        (:mod:`recon3d.surface.runs`).
     own_trust : bool -- there the slice's confidence (for fusing families) becomes at least
         the mean of its neighbours': the value is their say (off: the slice keeps the
         'unseen' trust of its chord's fill, and another family's filled-in solid outweighs
@@ -92,6 +96,7 @@ class CapSettings:
     deep: float = 1.0
     slits: bool = False
     enclosed: float = 0.25
+    runs: bool = True
 
 
 def unsensed_pieces(region, step: float):
@@ -166,6 +171,17 @@ def _one_way(fa, fb, nodes, pa, pb, reach, deep, settings):
         fill = np.where(wide, fill_w, fill)
         empty = np.where(wide, empty_w, empty)
     return fill, empty
+
+
+def fill_towards(fa, fb, nodes, pa, pb, step: float, gap: float,
+                 settings: CapSettings = CapSettings()) -> np.ndarray:
+    """(ny, nx) bool: ``a``'s fill that the rule would end at ``a`` against slice ``b``.
+
+    fa, fb : (ny, nx) float32 -- the two fields, truncated at ``gap``.
+    pa, pb : the slices' :func:`unsensed_pieces`.
+    """
+    return _one_way(fa, fb, nodes, pa, pb, settings.reach * step, 0.999 * settings.deep * gap,
+                    settings)[0]
 
 
 @dataclass(frozen=True)

@@ -72,3 +72,17 @@ def test_a_run_that_reaches_the_end_slice_is_kept(prism):
     mesh, planes, truth = prism
     volume, _ = _far(prism, (4, 5, 6))
     assert volume > truth.volume * 1.05
+
+
+def test_a_traced_slice_in_the_run_keeps_its_material(prism):
+    """Slices 2 and 4 close the slot with a chord, slice 3 traces a full block (W1 all
+    round: the sensing shows material there). The run stops at the traced slice: slice 3's
+    block stays (a point in the slot on its plane is inside the surface). Without the test of
+    the run's boundary being unsensed, the block would be dropped with the chords' fills."""
+    mesh, planes, truth = prism
+    regions = _regions((2, 4))
+    block = np.array([[-10, -6], [10, -6], [10, 6], [-10, 6], [-10, -6]], dtype=float)
+    regions[3] = slice_region([block], [], [], [], 1e-9)
+    surface = fuse([family_solid(regions, planes, STEP)], mesh.bounds)
+    probe = np.array([[0.0, 2.0, planes[3].offset]])
+    assert surface.contains(probe)[0]

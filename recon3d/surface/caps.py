@@ -48,7 +48,7 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
 
-__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "fill_towards",
+__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "unsensed_side",
            "own_caps"]
 
 UNSENSED = ("unknown", "bridge")
@@ -173,15 +173,17 @@ def _one_way(fa, fb, nodes, pa, pb, reach, deep, settings):
     return fill, empty
 
 
-def fill_towards(fa, fb, nodes, pa, pb, step: float, gap: float,
-                 settings: CapSettings = CapSettings()) -> np.ndarray:
-    """(ny, nx) bool: ``a``'s fill that the rule would end at ``a`` against slice ``b``.
+def unsensed_side(mask, fa, nodes, pa, step: float, settings: CapSettings = CapSettings()
+                  ) -> bool:
+    """Whether slice ``a``'s boundary along ``mask`` ((ny, nx) bool, inside ``a``) is unsensed:
+    more than ``share`` of the mask's nodes next to ``a``'s boundary have an unknown chord or
+    a bridge as their nearest piece (within ``reach`` steps).
 
-    fa, fb : (ny, nx) float32 -- the two fields, truncated at ``gap``.
-    pa, pb : the slices' :func:`unsensed_pieces`.
+    fa : (ny, nx) float32 -- ``a``'s field; pa : its :func:`unsensed_pieces`.
     """
-    return _one_way(fa, fb, nodes, pa, pb, settings.reach * step, 0.999 * settings.deep * gap,
-                    settings)[0]
+    edge = mask & binary_dilation(fa <= 0)
+    share, _ = _side_share(mask.astype(np.int32), 1, edge, nodes, pa, settings.reach * step)
+    return bool(share[0] > settings.share)
 
 
 @dataclass(frozen=True)

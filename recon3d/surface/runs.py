@@ -6,27 +6,28 @@ mouth the probe closed with unknown chords A_iB_i (§3.3: the lid of an area G_i
 unknown at the end) on several slices in a row -- slices ``i`` .. ``j`` -- is capped only at
 the run's two ends (towards ``i - 1`` and ``j + 1``, which show it empty); inside the run the
 slices agree, so the blend keeps the fill between them, and the two end slices keep a plate
-each (``vtk_42400-IDGH`` along z, slices 7 - 9).
+each (``vtk_42400-IDGH`` along z, slices 6 - 9 of 16).
 
 The rule: a fill of slice ``i`` that the caps rule ends at ``i`` towards ``i - 1`` is
 followed upwards. On slice ``k > i`` it continues as the part of ``k``'s region that ``i - 1``
-shows empty and that the caps rule's own test (:func:`recon3d.surface.caps.fill_towards`:
-``k``'s boundary there unsensed, ``i - 1``'s sensed, the two a gap apart somewhere) would end
-at ``k`` against ``i - 1``, connected to what was followed on ``k - 1``. When the caps rule
-ends that part at ``k`` towards ``k + 1`` as well, the run ``i`` .. ``k`` is closed on both
-sides by slices that show the space empty: on every slice of the run the fill is dropped
-where both run neighbours show it empty, its value becoming the run neighbours' fields
-interpolated by height (negative). Runs of one slice are
-:func:`recon3d.surface.caps.own_caps`' case and left to it.
+shows empty, within a gap of what was followed on ``k - 1`` (a face under 45 degrees moves
+less), as long as ``k``'s boundary along it is unsensed
+(:func:`recon3d.surface.caps.unsensed_side`: mostly unknown chords or bridges). When the caps
+rule ends that part at ``k`` towards ``k + 1`` as well, the run ``i`` .. ``k`` is closed on
+both sides by slices that show the space empty: on every slice of the run the followed fill
+is dropped where both run neighbours show it empty, its value becoming the run neighbours'
+fields interpolated by height (negative). A run that reaches the family's end slice, or
+meets a traced wall, keeps its fill. Runs of one slice are
+:func:`recon3d.surface.caps.own_caps`' case (it gives the same there).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import label
+from scipy.ndimage import binary_dilation, label
 
-from recon3d.surface.caps import CapSettings, fill_towards, unsensed_pieces
+from recon3d.surface.caps import CapSettings, unsensed_pieces, unsensed_side
 
 __all__ = ["RunDrop", "run_caps"]
 
@@ -91,18 +92,16 @@ def run_caps(f: list, capped: list, regions, grid, clip: list,
     heights = np.asarray(grid.heights, dtype=np.float64)
     out, drops = list(f), []
     tiny = np.float32(1e-3 * step)
+    grow = max(1, int(np.ceil(max(clip) / step)))  # a face under 45 degrees moves <= a gap
     for i in range(1, m - 2):
         lo = capped[i - 1]
         if lo is None or not lo.fill_b.any():
             continue
-        t = clip[i - 1]
-        below = np.clip(f[i - 1], -t, t)
         followed = [lo.fill_b]
         for k in range(i + 1, m - 1):
-            fk = np.clip(f[k], -t, t)
-            fill = fill_towards(fk, below, nodes, pcs(k), pcs(i - 1), step, t, settings)
-            part = _connected_to(fill, followed[-1])
-            if not part.any():
+            near = binary_dilation(followed[-1], iterations=grow)
+            part = (f[k] > 0) & (f[i - 1] <= 0) & near
+            if not part.any() or not unsensed_side(part, f[k], nodes, pcs(k), step, settings):
                 break
             followed.append(part)
             hi = capped[k]

@@ -77,6 +77,9 @@ class CapSettings:
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
+    steps : bool -- a lid between two slices that neither neighbouring gap continues is a
+        step at mid-gap, not a ramp (:mod:`recon3d.surface.steps`).
+    step_tol : float -- grid steps: a wall that moved less stands still (same module).
     runs : bool -- a fill closed by chords on a run of two or more slices in a row, which
         the run's neighbouring slices show empty, is dropped on the run's slices
         (:mod:`recon3d.surface.runs`).
@@ -97,6 +100,8 @@ class CapSettings:
     slits: bool = False
     enclosed: float = 0.25
     runs: bool = True
+    steps: bool = True
+    step_tol: float = 1.5
 
 
 def unsensed_pieces(region, step: float):

@@ -32,6 +32,7 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.caps import CapSettings, cap_unsensed, own_caps
 from recon3d.surface.runs import run_caps
+from recon3d.surface.steps import gap_steps
 from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
                                         in_plane_share, seen_map)
 from recon3d.surface.warp import WarpSettings, warp_gap
@@ -239,8 +240,16 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
         gap, t, cap = float(gaps[i]), clip[i], capped[i]
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
         if warped:
+            steps = gap_steps(fa, fb, np.clip(f[i - 1], -t, t) if i > 0 else None,
+                              np.clip(f[i + 2], -t, t) if i + 2 < len(f) else None,
+                              grid.step, caps.step_tol) if caps.steps else None
             skip = cap.skip() if cap is not None else (None, None)
+            if steps is not None:
+                held = steps.skip()
+                skip = tuple(held if s is None else s | held for s in skip)
             val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp, *skip)
+            if steps is not None:  # a lid no neighbouring gap continues: a step at mid-gap
+                val = steps.apply(val, fa, fb, w3)
             if cap is not None:
                 val = cap.apply(val, w3)
         else:

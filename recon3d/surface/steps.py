@@ -1,0 +1,112 @@
+"""A lid between two slices that neither neighbouring gap continues is a step, not a ramp.
+
+A probe moving in the slice plane meets a face parallel to the planes (a lid: a stair's
+tread, a floor, the underside of a cap) only where a plane cuts it; between two planes the
+lid's height is unknown within the gap. The aligned blend (:mod:`recon3d.surface.warp`)
+matches the walls on both sides of the lid (same in-plane normal, a move within reach) and
+makes a ramp from one slice's wall to the other's -- which is right for a slanted wall (a
+cone moves its edge the same way) and wrong for a step.
+
+Two slices cannot tell the two apart; their neighbours can. Per gap ``(a, b)`` =
+``(i, i + 1)`` and per connected component of the nodes where the two slices disagree:
+
+* a **slope** continues into the neighbouring gaps: where ``a``'s boundary bounds a fill of
+  ``a`` (inside ``a``, outside ``b``: material that recedes from ``a`` to ``b``), slice
+  ``i - 1`` had more material still (its field there is positive, beyond ``tol`` steps);
+  where ``b``'s boundary bounds it, slice ``i + 2`` has less still (negative beyond
+  ``tol``) -- likewise with the roles swapped for a fill of ``b``;
+* a **step**: neither side continues (the walls on both sides stand still, or the change
+  reverses in the next gap: a slot or a rib one slice sees) and the component is wider than
+  ``tol`` steps somewhere (a thinner one is a wall that moved by under a step).
+
+A step's component gets the nearest slice's field (``a``'s up to half the gap, ``b``'s
+beyond): both walls run straight (in the slicing direction) to the middle of the gap and
+the lid lies flat there, the least worst guess for a height the sensing does not know. Its
+boundary samples are not matched by the alignment. An end gap has one neighbouring gap; a
+family of two slices has none and keeps the blend.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import binary_dilation, label, maximum, median
+
+__all__ = ["GapSteps", "gap_steps"]
+
+
+@dataclass(frozen=True)
+class GapSteps:
+    """The steps of one gap; masks (ny, nx) bool.
+
+    mask : the components blended as steps (the nearest slice's field).
+    """
+
+    mask: np.ndarray
+
+    def skip(self) -> np.ndarray:
+        """Nodes whose boundary samples the alignment must not pair (the steps grown by a
+        node)."""
+        return binary_dilation(self.mask)
+
+    def apply(self, val: np.ndarray, fa: np.ndarray, fb: np.ndarray, w: np.ndarray
+              ) -> np.ndarray:
+        """The blend ``val`` (k, ny, nx) with the steps' nearest-slice field.
+
+        fa, fb : (ny, nx) float32 -- the two slices' fields; w : (k, 1, 1) -- the layers'
+        fractions of the gap.
+        """
+        near = np.where(w < 0.5, fa[None], fb[None])
+        return np.where(self.mask[None], near, val).astype(val.dtype)
+
+
+def _continues(comp, n, edge, f_next, sign, tol) -> np.ndarray:
+    """(n,) bool: per component, the neighbouring slice's field along ``edge`` has the
+    ``sign`` beyond ``tol`` (median): the change goes on there. No neighbour or no edge: False.
+    """
+    if f_next is None:
+        return np.zeros(n, dtype=bool)
+    lab = np.where(edge, comp, 0)
+    idx = np.arange(1, n + 1)
+    has = np.asarray(maximum(edge, lab, idx), dtype=bool)
+    med = np.asarray(median(f_next, lab, idx), dtype=np.float64)
+    return has & (sign * np.nan_to_num(med) > tol)
+
+
+def _one_way(fa, fb, f_before, f_after, tol):
+    """Nodes inside ``a``, outside ``b`` blended as steps (module doc)."""
+    mask = (fa > 0) & (fb <= 0)
+    comp, n = label(mask)
+    if n == 0:
+        return mask
+    edge_a = mask & binary_dilation(fa <= 0)  # a's wall bounds it
+    edge_b = mask & binary_dilation(fb > 0)  # b's wall bounds it
+    slope = _continues(comp, n, edge_a, f_before, +1, tol) | \
+        _continues(comp, n, edge_b, f_after, -1, tol)
+    idx = np.arange(1, n + 1)
+    wide = np.asarray(maximum(np.minimum(fa, -fb), comp, idx)) > tol
+    lut = np.concatenate([[False], ~slope & wide])
+    return lut[comp]
+
+
+def gap_steps(fa, fb, before, after, step: float, tol: float = 1.5) -> GapSteps | None:
+    """The steps of the gap between slices ``a`` and ``b`` (module doc).
+
+    Parameters
+    ----------
+    fa, fb : (ny, nx) float32 -- the two slices' fields, truncated alike.
+    before, after : (ny, nx) float32 or None -- the fields of the slice below ``a`` and of
+        the one above ``b`` (same truncation); None at the family's ends.
+    step : float -- grid step.
+    tol : float -- grid steps: a wall that moved less stands still.
+
+    Returns
+    -------
+    GapSteps, or None when the gap has no step or no neighbouring gap.
+    """
+    if before is None and after is None:
+        return None
+    t = tol * step
+    # a's fill recedes from a to b; b's fill is the same seen from b (the neighbours swap)
+    mask = _one_way(fa, fb, before, after, t) | _one_way(fb, fa, after, before, t)
+    return GapSteps(mask) if mask.any() else None

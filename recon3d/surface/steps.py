@@ -60,17 +60,16 @@ class GapSteps:
         return np.where(self.mask[None], near, val).astype(val.dtype)
 
 
-def _continues(comp, n, edge, f_next, sign, tol) -> np.ndarray:
-    """(n,) bool: per component, the neighbouring slice's field along ``edge`` has the
-    ``sign`` beyond ``tol`` (median): the change goes on there. No neighbour or no edge: False.
-    """
+def _still(comp, n, edge, f_next, tol) -> tuple[np.ndarray, np.ndarray]:
+    """Per component (n,): whether ``edge`` has nodes and a neighbouring slice, and whether
+    that slice's wall there stands still (median |field| along ``edge`` within ``tol``)."""
     if f_next is None:
-        return np.zeros(n, dtype=bool)
+        return np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
     lab = np.where(edge, comp, 0)
     idx = np.arange(1, n + 1)
     has = np.asarray(maximum(edge, lab, idx), dtype=bool)
-    med = np.asarray(median(f_next, lab, idx), dtype=np.float64)
-    return has & (sign * np.nan_to_num(med) > tol)
+    med = np.asarray(median(np.abs(f_next), lab, idx), dtype=np.float64)
+    return has, has & (np.nan_to_num(med, nan=np.inf) <= tol)
 
 
 def _one_way(fa, fb, f_before, f_after, tol):
@@ -79,13 +78,13 @@ def _one_way(fa, fb, f_before, f_after, tol):
     comp, n = label(mask)
     if n == 0:
         return mask
-    edge_a = mask & binary_dilation(fa <= 0)  # a's wall bounds it
-    edge_b = mask & binary_dilation(fb > 0)  # b's wall bounds it
-    slope = _continues(comp, n, edge_a, f_before, +1, tol) | \
-        _continues(comp, n, edge_b, f_after, -1, tol)
+    has_a, still_a = _still(comp, n, mask & binary_dilation(fa <= 0), f_before, tol)
+    has_b, still_b = _still(comp, n, mask & binary_dilation(fb > 0), f_after, tol)
+    # a step: every wall along it stands still in the neighbouring gap, and one does
+    step = (has_a | has_b) & (still_a | ~has_a) & (still_b | ~has_b)
     idx = np.arange(1, n + 1)
     wide = np.asarray(maximum(np.minimum(fa, -fb), comp, idx)) > tol
-    lut = np.concatenate([[False], ~slope & wide])
+    lut = np.concatenate([[False], step & wide])
     return lut[comp]
 
 
@@ -104,7 +103,7 @@ def gap_steps(fa, fb, before, after, step: float, tol: float = 1.5) -> GapSteps 
     -------
     GapSteps, or None when the gap has no step or no neighbouring gap.
     """
-    if before is None and after is None:
+    if before is None or after is None:  # an end gap: one side unknown
         return None
     t = tol * step
     # a's fill recedes from a to b; b's fill is the same seen from b (the neighbours swap)

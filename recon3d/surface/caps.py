@@ -101,7 +101,7 @@ class CapSettings:
     enclosed: float = 0.25
     runs: bool = True
     steps: bool = True
-    step_tol: float = 1.5
+    step_tol: float = 0.5
 
 
 def unsensed_pieces(region, step: float):

@@ -7,23 +7,25 @@ matches the walls on both sides of the lid (same in-plane normal, a move within 
 makes a ramp from one slice's wall to the other's -- which is right for a slanted wall (a
 cone moves its edge the same way) and wrong for a step.
 
-Two slices cannot tell the two apart; their neighbours can. Per gap ``(a, b)`` =
-``(i, i + 1)`` and per connected component of the nodes where the two slices disagree:
+Two slices cannot tell the two apart; their neighbours can: a slanted wall moves in the
+neighbouring gaps too (a cone's edge moves in every gap), a step's walls stand still there
+(a prism below the tread, a prism above). Per gap ``(a, b)`` = ``(i, i + 1)`` with both
+neighbouring slices ``i - 1`` and ``i + 2`` (an end gap keeps the blend), and per connected
+component of the nodes where ``a`` and ``b`` disagree (inside ``a``, outside ``b``, or the
+other way round):
 
-* a **slope** continues into the neighbouring gaps: where ``a``'s boundary bounds a fill of
-  ``a`` (inside ``a``, outside ``b``: material that recedes from ``a`` to ``b``), slice
-  ``i - 1`` had more material still (its field there is positive, beyond ``tol`` steps);
-  where ``b``'s boundary bounds it, slice ``i + 2`` has less still (negative beyond
-  ``tol``) -- likewise with the roles swapped for a fill of ``b``;
-* a **step**: neither side continues (the walls on both sides stand still, or the change
-  reverses in the next gap: a slot or a rib one slice sees) and the component is wider than
-  ``tol`` steps somewhere (a thinner one is a wall that moved by under a step).
+* the component's walls: ``a``'s boundary where it bounds the component, compared with slice
+  ``i - 1``, and ``b``'s, compared with slice ``i + 2``; a wall **stands still** when the
+  median of ``|f_neighbour - f_own|`` along it is at most ``tol`` grid steps;
+* the component is a **step** when every wall it has stands still and it has one (a block
+  that ends between two slices has only ``a``'s walls), and it is wider than ``tol`` steps
+  somewhere; otherwise the blend is left alone (a wall that moves in a neighbouring gap: a
+  slope, a thin tilted wall, the rounded end of a bent tube).
 
 A step's component gets the nearest slice's field (``a``'s up to half the gap, ``b``'s
 beyond): both walls run straight (in the slicing direction) to the middle of the gap and
-the lid lies flat there, the least worst guess for a height the sensing does not know. Its
-boundary samples are not matched by the alignment. An end gap has one neighbouring gap; a
-family of two slices has none and keeps the blend.
+the lid lies flat there, the least worst guess for a height the sensing does not know
+(within half a gap). Its boundary samples are not matched by the alignment.
 """
 from __future__ import annotations
 
@@ -60,15 +62,16 @@ class GapSteps:
         return np.where(self.mask[None], near, val).astype(val.dtype)
 
 
-def _still(comp, n, edge, f_next, tol) -> tuple[np.ndarray, np.ndarray]:
+def _still(comp, n, edge, f_own, f_next, tol) -> tuple[np.ndarray, np.ndarray]:
     """Per component (n,): whether ``edge`` has nodes and a neighbouring slice, and whether
-    that slice's wall there stands still (median |field| along ``edge`` within ``tol``)."""
+    the wall there stands still from the slice (``f_own``) to that neighbour (``f_next``):
+    the median of |f_next - f_own| along ``edge`` within ``tol``."""
     if f_next is None:
         return np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
     lab = np.where(edge, comp, 0)
     idx = np.arange(1, n + 1)
     has = np.asarray(maximum(edge, lab, idx), dtype=bool)
-    med = np.asarray(median(np.abs(f_next), lab, idx), dtype=np.float64)
+    med = np.asarray(median(np.abs(f_next - f_own), lab, idx), dtype=np.float64)
     return has, has & (np.nan_to_num(med, nan=np.inf) <= tol)
 
 
@@ -78,8 +81,8 @@ def _one_way(fa, fb, f_before, f_after, tol):
     comp, n = label(mask)
     if n == 0:
         return mask
-    has_a, still_a = _still(comp, n, mask & binary_dilation(fa <= 0), f_before, tol)
-    has_b, still_b = _still(comp, n, mask & binary_dilation(fb > 0), f_after, tol)
+    has_a, still_a = _still(comp, n, mask & binary_dilation(fa <= 0), fa, f_before, tol)
+    has_b, still_b = _still(comp, n, mask & binary_dilation(fb > 0), fb, f_after, tol)
     # a step: every wall along it stands still in the neighbouring gap, and one does
     step = (has_a | has_b) & (still_a | ~has_a) & (still_b | ~has_b)
     idx = np.arange(1, n + 1)
@@ -88,7 +91,7 @@ def _one_way(fa, fb, f_before, f_after, tol):
     return lut[comp]
 
 
-def gap_steps(fa, fb, before, after, step: float, tol: float = 1.5) -> GapSteps | None:
+def gap_steps(fa, fb, before, after, step: float, tol: float = 0.5) -> GapSteps | None:
     """The steps of the gap between slices ``a`` and ``b`` (module doc).
 
     Parameters

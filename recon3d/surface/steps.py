@@ -46,20 +46,28 @@ class GapSteps:
 
     mask: np.ndarray
 
+    @property
+    def grown(self) -> np.ndarray:
+        """The steps grown by two nodes: the nodes next to them (where the two slices agree)
+        take the nearest slice's field too, so that the walls' zero crossings lie between
+        values of one field (the blend's would pull them by up to a node)."""
+        return binary_dilation(self.mask, iterations=2)
+
     def skip(self) -> np.ndarray:
-        """Nodes whose boundary samples the alignment must not pair (the steps grown by a
+        """Nodes whose boundary samples the alignment must not pair (the steps grown by three
         node)."""
-        return binary_dilation(self.mask)
+        return binary_dilation(self.mask, iterations=3)
 
     def apply(self, val: np.ndarray, fa: np.ndarray, fb: np.ndarray, w: np.ndarray
               ) -> np.ndarray:
-        """The blend ``val`` (k, ny, nx) with the steps' nearest-slice field.
+        """The blend ``val`` (k, ny, nx) with the steps' nearest-slice field (on a layer
+        exactly half-way, the two fields' mean).
 
         fa, fb : (ny, nx) float32 -- the two slices' fields; w : (k, 1, 1) -- the layers'
         fractions of the gap.
         """
-        near = np.where(w < 0.5, fa[None], fb[None])
-        return np.where(self.mask[None], near, val).astype(val.dtype)
+        near = np.where(w < 0.5, fa[None], np.where(w > 0.5, fb[None], 0.5 * (fa + fb)[None]))
+        return np.where(self.grown[None], near, val).astype(val.dtype)
 
 
 def _still(comp, n, edge, f_own, f_next, tol) -> tuple[np.ndarray, np.ndarray]:

@@ -55,7 +55,7 @@ class GapSteps:
 
     def skip(self) -> np.ndarray:
         """Nodes whose boundary samples the alignment must not pair (the steps grown by three
-        node)."""
+        nodes)."""
         return binary_dilation(self.mask, iterations=3)
 
     def apply(self, val: np.ndarray, fa: np.ndarray, fb: np.ndarray, w: np.ndarray

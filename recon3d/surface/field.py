@@ -11,7 +11,9 @@ normal by one of two routes (:data:`ROUTES`):
 * ``'warp'`` (default) -- the two slices aligned first (:mod:`recon3d.surface.warp`):
   a thin wall that moves more than its thickness from one slice to the next stays a
   wall, a ring stays a ring; space a slice only closed with unknown chords or bridges,
-  where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`);
+  where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`), also
+  when a run of slices closed it (:mod:`recon3d.surface.runs`); a lid whose walls stand
+  still in the neighbouring gaps is a step at mid-gap (:mod:`recon3d.surface.steps`);
 * ``'linear'`` -- plain shape-based interpolation (Herman et al. 1992): a loop that keeps
   its shape makes a straight prism, a loop that vanishes tapers off at roughly 45 degrees,
   loops that split or merge do so half-way.

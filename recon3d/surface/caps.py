@@ -48,7 +48,8 @@ from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
 
-__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "own_caps"]
+__all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "unsensed_side",
+           "own_caps"]
 
 UNSENSED = ("unknown", "bridge")
 """Piece kinds no contact showed: the closure's chords of unknown areas and its bridges."""
@@ -76,6 +77,12 @@ class CapSettings:
         is at most this share of the empty slice's (the fill encloses it: a slit).
     own : bool -- a slice's own unsensed fill (empty) that the rule caps towards both
         neighbouring slices is dropped (filled) on the slice itself (:func:`own_caps`).
+    steps : bool -- a lid between two slices that neither neighbouring gap continues is a
+        step at mid-gap, not a ramp (:mod:`recon3d.surface.steps`).
+    step_tol : float -- grid steps: a wall that moved less stands still (same module).
+    runs : bool -- a fill closed by chords on a run of two or more slices in a row, which
+        the run's neighbouring slices show empty, is dropped on the run's slices
+        (:mod:`recon3d.surface.runs`).
     own_trust : bool -- there the slice's confidence (for fusing families) becomes at least
         the mean of its neighbours': the value is their say (off: the slice keeps the
         'unseen' trust of its chord's fill, and another family's filled-in solid outweighs
@@ -92,6 +99,9 @@ class CapSettings:
     deep: float = 1.0
     slits: bool = False
     enclosed: float = 0.25
+    runs: bool = True
+    steps: bool = True
+    step_tol: float = 0.5
 
 
 def unsensed_pieces(region, step: float):
@@ -166,6 +176,19 @@ def _one_way(fa, fb, nodes, pa, pb, reach, deep, settings):
         fill = np.where(wide, fill_w, fill)
         empty = np.where(wide, empty_w, empty)
     return fill, empty
+
+
+def unsensed_side(mask, fa, nodes, pa, step: float, settings: CapSettings = CapSettings()
+                  ) -> bool:
+    """Whether slice ``a``'s boundary along ``mask`` ((ny, nx) bool, inside ``a``) is unsensed:
+    more than ``share`` of the mask's nodes next to ``a``'s boundary have an unknown chord or
+    a bridge as their nearest piece (within ``reach`` steps).
+
+    fa : (ny, nx) float32 -- ``a``'s field; pa : its :func:`unsensed_pieces`.
+    """
+    edge = mask & binary_dilation(fa <= 0)
+    share, _ = _side_share(mask.astype(np.int32), 1, edge, nodes, pa, settings.reach * step)
+    return bool(share[0] > settings.share)
 
 
 @dataclass(frozen=True)

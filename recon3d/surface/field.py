@@ -11,7 +11,9 @@ normal by one of two routes (:data:`ROUTES`):
 * ``'warp'`` (default) -- the two slices aligned first (:mod:`recon3d.surface.warp`):
   a thin wall that moves more than its thickness from one slice to the next stays a
   wall, a ring stays a ring; space a slice only closed with unknown chords or bridges,
-  where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`);
+  where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`), also
+  when a run of slices closed it (:mod:`recon3d.surface.runs`); a lid whose walls stand
+  still in the neighbouring gaps is a step at mid-gap (:mod:`recon3d.surface.steps`);
 * ``'linear'`` -- plain shape-based interpolation (Herman et al. 1992): a loop that keeps
   its shape makes a straight prism, a loop that vanishes tapers off at roughly 45 degrees,
   loops that split or merge do so half-way.
@@ -31,6 +33,8 @@ import shapely
 from scipy.spatial import cKDTree
 
 from recon3d.surface.caps import CapSettings, cap_unsensed, own_caps
+from recon3d.surface.runs import run_caps
+from recon3d.surface.steps import gap_steps
 from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
                                         in_plane_share, seen_map)
 from recon3d.surface.warp import WarpSettings, warp_gap
@@ -169,16 +173,22 @@ def slice_sdf(region, grid: FamilyGrid) -> np.ndarray:
     return np.where(inside, d, -d).astype(np.float32)
 
 
-def _neighbours_say(seen: list, f: list, f0: list) -> list:
+def _neighbours_say(seen: list, f: list, f0: list, drops=()) -> list:
     """The slices' confidence maps, with the mean of the two neighbours' where
-    :func:`recon3d.surface.caps.own_caps` changed a slice's own field (``f`` against ``f0``):
-    the value there is the neighbours' say, so is the trust."""
+    :func:`recon3d.surface.caps.own_caps` changed a slice's own field (``f`` against ``f0``),
+    and the run neighbours' (interpolated by height) where
+    :func:`recon3d.surface.runs.run_caps` dropped a run's fill (``drops``): the value there is
+    the neighbours' say, so is the trust."""
     out = list(seen)
     for i in range(1, len(f) - 1):
         if f[i] is not f0[i]:
             changed = f[i] != f0[i]
             mean = 0.5 * (seen[i - 1] + seen[i + 1])
             out[i] = np.where(changed, np.maximum(seen[i], mean), seen[i]).astype(np.float32)
+    for d in drops:
+        say = (1 - d.t) * seen[d.lo] + d.t * seen[d.hi]
+        out[d.slice] = np.where(d.mask, np.maximum(out[d.slice], say),
+                                out[d.slice]).astype(np.float32)
     return out
 
 
@@ -219,17 +229,29 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     capped = [cap_unsensed(np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t), regions[i],
                            regions[i + 1], grid, float(gaps[i]), caps) if warped else None
               for i, t in enumerate(clip)]
-    if warped and caps.own:
-        f, f0 = own_caps(f, capped, grid.step), f
+    drops = []
+    if warped:  # a fill closed on a run of slices ends at the run's empty neighbours
+        f0 = f
+        f, drops = run_caps(f, capped, regions, grid, clip, caps)
+        if caps.own:
+            f = own_caps(f, capped, grid.step)
         if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
-            seen = _neighbours_say(seen, f, f0)  # showed empty (solid), they are its sensing
+            seen = _neighbours_say(seen, f, f0, drops)  # showed empty (solid), they say
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
         gap, t, cap = float(gaps[i]), clip[i], capped[i]
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
         if warped:
+            steps = gap_steps(fa, fb, np.clip(f[i - 1], -t, t) if i > 0 else None,
+                              np.clip(f[i + 2], -t, t) if i + 2 < len(f) else None,
+                              grid.step, caps.step_tol) if caps.steps else None
             skip = cap.skip() if cap is not None else (None, None)
+            if steps is not None:
+                held = steps.skip()
+                skip = tuple(held if s is None else s | held for s in skip)
             val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp, *skip)
+            if steps is not None:  # a lid no neighbouring gap continues: a step at mid-gap
+                val = steps.apply(val, fa, fb, w3)
             if cap is not None:
                 val = cap.apply(val, w3)
         else:

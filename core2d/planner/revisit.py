@@ -81,7 +81,7 @@ if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
 __all__ = ["revisit", "finish", "lid_like", "closes_loop", "proof_lines", "in_reach",
-           "MAX_TRIES", "MAX_SWEEP"]
+           "lid_end_radius", "MAX_TRIES", "MAX_SWEEP"]
 
 #: spread passes (:func:`passes`) before the sweep at resolution eps
 MAX_TRIES = 6
@@ -167,8 +167,42 @@ def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
-    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=end_radius(run.res),
-                                min_gap=run.angle_tol)
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2,
+                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
+
+
+def lid_end_radius(res, dist: float) -> float:
+    """The end radius of a lid ``dist`` long: within it a pass's contact is
+    A_i or B_i again, and the W3 proof's lines leave it at each end.
+
+    :func:`~core2d.planner.grazing.end_radius`, except for a *short lid*
+    under a noisy sensor that does not resolve eps/2 (sigma 0.3 eps, or
+    taxels with noise): one shorter than twice that radius (eps/2 + jitter,
+    4.04 eps at sigma 0.3, taxel 0.25) has no point farther than the radius
+    from both ends. Every pass's contact is then an end again, and no line
+    is left for the proof of step 2, so each lid between
+    :attr:`~core2d.resolution.Resolution.w2_dist` and twice the radius long
+    was closed without a pass (W3 if the probe held it, else ``unknown``):
+    the lids over the arcs of ``cup_handle`` z6 / z7 (circles 13 eps across)
+    and over the mouths of short pockets. Such a lid keeps a middle band
+    eps/2 wide (the paper's resolution, §3.1): the radius is
+    Dist(A_i, B_i)/2 - eps/4, at least eps/2. A contact in the band splits
+    the lid as Theorem 1's pass does; if it was a re-reading of an end, the
+    child (A_i, C) is shorter than the jitter (W2, Dist < eps + jitter) and
+    (C, B_i) shorter than Dist(A_i, B_i)/2 + eps/4 + the contact's offset
+    from the lid. Perfect sensing (jitter 0) and fine sensors
+    (:func:`~core2d.planner.grazing.resolves_half_eps`: the radius is eps/2
+    and every lid not W2 is at least eps long) are unchanged.
+
+    >>> from core2d.resolution import Resolution
+    >>> res = Resolution.of(1.0, noise=0.3, taxel=0.25)
+    >>> round(lid_end_radius(res, 3.5), 3), round(lid_end_radius(res, 10.0), 3)
+    (1.5, 2.023)
+    """
+    r = end_radius(res)
+    if res.jitter == 0 or dist >= 2.0 * r:
+        return r
+    return max(res.eps / 2.0, dist / 2.0 - res.eps / 4.0)
 
 
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
@@ -215,8 +249,8 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     map, within the lid's reach (:func:`in_reach`, with a noisy sensor and
     the probe's ``joint`` given), and not making a child that repeats the A and B of
     an ancestor (§4.4)?"""
-    same = end_radius(run.res)
-    if _near_end(run, area, point, same) or run.known.distance(point) <= run.res.near:
+    same = lid_end_radius(run.res, area.dist)
+    if _near_end(run, area, point, same) or run.known.distance(point) <= min(run.res.near, same):
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False

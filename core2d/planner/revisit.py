@@ -205,6 +205,15 @@ def lid_end_radius(res, dist: float) -> float:
     return max(res.eps / 2.0, dist / 2.0 - res.eps / 4.0)
 
 
+def _on_map(res, dist: float) -> float:
+    """Within what distance of recorded contour a point is on it, near a lid
+    ``dist`` long: :attr:`~core2d.resolution.Resolution.near` (2 tol + the
+    jitter), at most :func:`lid_end_radius` for a short lid, whose ends'
+    recorded pieces would otherwise put its whole middle on the map."""
+    r = lid_end_radius(res, dist)
+    return min(res.near, r) if r < end_radius(res) else res.near
+
+
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
     """Within ``radius`` (default the same-contact radius, eps/2 + the
     sensor's jitter) of A_i or B_i: the same contact at the paper's
@@ -250,7 +259,8 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     the probe's ``joint`` given), and not making a child that repeats the A and B of
     an ancestor (§4.4)?"""
     same = lid_end_radius(run.res, area.dist)
-    if _near_end(run, area, point, same) or run.known.distance(point) <= min(run.res.near, same):
+    if _near_end(run, area, point, same) or run.known.distance(point) <= _on_map(run.res,
+                                                                               area.dist):
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False
@@ -279,7 +289,8 @@ def on_recorded(run: Exploration, area) -> bool:
         return False
     k = int(np.ceil(area.dist / run.res.fan_spacing)) + 1
     pts = area.a + np.linspace(0.0, 1.0, k)[:, None] * (area.b - area.a)
-    return all(run.known.distance(p) <= run.res.near for p in pts)
+    near = _on_map(run.res, area.dist)  # a short lid: its middle band is off the map
+    return all(run.known.distance(p) <= near for p in pts)
 
 
 def reversed_lid(run: Exploration, area) -> bool:

@@ -1,5 +1,5 @@
 """Short lids under a coarse noisy sensor (sigma 0.3 eps, taxels 0.25 eps):
-:func:`core2d.planner.revisit.lid_end_radius`.
+:mod:`core2d.planner.short_lids`.
 
 Two 16-gons 13 eps across (the handle of the built-in ``cup_handle``,
 slices z6 / z7): their sides are 2.6 eps long, so the lids A_iB_i over
@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.grazing import end_radius
-from core2d.planner.revisit import lid_end_radius
+from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.resolution import Resolution
 from noisy_runs import coverages
 
@@ -33,6 +33,9 @@ def test_a_short_lid_keeps_a_middle_band():
     for dist in (1.5, 3.0, 10.0):  # perfect and fine sensors: unchanged
         assert lid_end_radius(fine, dist) == end_radius(fine) == 0.5
         assert lid_end_radius(Resolution.of(1.0), dist) == 0.5
+        assert on_map(fine, dist) == fine.near
+    assert on_map(coarse, 3.5) == 1.5 < coarse.near  # the band is off the map
+    assert on_map(coarse, 10.0) == coarse.near
 
 
 def test_short_lids_over_small_rings_at_sigma_03_eps():

@@ -23,7 +23,10 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    them facing a gap) -- another pass, another side: it plays the role of Theorem 1's pass through
    L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
    new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
-   everything recorded, and behind the lid or near it: :func:`in_reach`)
+   everything recorded, and behind the lid or near it: :func:`in_reach`;
+   with a noisy sensor the radii widen by the jitter, at most to the middle
+   band eps/2 wide that a short lid keeps:
+   :func:`~core2d.planner.short_lids.lid_end_radius`)
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
@@ -75,13 +78,14 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.regions import Posture, cross, near_probe
+from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.tracing import reread_pass
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
 __all__ = ["revisit", "finish", "lid_like", "closes_loop", "proof_lines", "in_reach",
-           "lid_end_radius", "MAX_TRIES", "MAX_SWEEP"]
+           "MAX_TRIES", "MAX_SWEEP"]
 
 #: spread passes (:func:`passes`) before the sweep at resolution eps
 MAX_TRIES = 6
@@ -171,49 +175,6 @@ def proof_lines(run: Exploration, area):
                                 margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
 
 
-def lid_end_radius(res, dist: float) -> float:
-    """The end radius of a lid ``dist`` long: within it a pass's contact is
-    A_i or B_i again, and the W3 proof's lines leave it at each end.
-
-    :func:`~core2d.planner.grazing.end_radius`, except for a *short lid*
-    under a noisy sensor that does not resolve eps/2 (sigma 0.3 eps, or
-    taxels with noise): one shorter than twice that radius (eps/2 + jitter,
-    4.04 eps at sigma 0.3, taxel 0.25) has no point farther than the radius
-    from both ends. Every pass's contact is then an end again, and no line
-    is left for the proof of step 2, so each lid between
-    :attr:`~core2d.resolution.Resolution.w2_dist` and twice the radius long
-    was closed without a pass (W3 if the probe held it, else ``unknown``):
-    the lids over the arcs of ``cup_handle`` z6 / z7 (circles 13 eps across)
-    and over the mouths of short pockets. Such a lid keeps a middle band
-    eps/2 wide (the paper's resolution, §3.1): the radius is
-    Dist(A_i, B_i)/2 - eps/4, at least eps/2. A contact in the band splits
-    the lid as Theorem 1's pass does; if it was a re-reading of an end, the
-    child (A_i, C) is shorter than the jitter (W2, Dist < eps + jitter) and
-    (C, B_i) shorter than Dist(A_i, B_i)/2 + eps/4 + the contact's offset
-    from the lid. Perfect sensing (jitter 0) and fine sensors
-    (:func:`~core2d.planner.grazing.resolves_half_eps`: the radius is eps/2
-    and every lid not W2 is at least eps long) are unchanged.
-
-    >>> from core2d.resolution import Resolution
-    >>> res = Resolution.of(1.0, noise=0.3, taxel=0.25)
-    >>> round(lid_end_radius(res, 3.5), 3), round(lid_end_radius(res, 10.0), 3)
-    (1.5, 2.023)
-    """
-    r = end_radius(res)
-    if res.jitter == 0 or dist >= 2.0 * r:
-        return r
-    return max(res.eps / 2.0, dist / 2.0 - res.eps / 4.0)
-
-
-def _on_map(res, dist: float) -> float:
-    """Within what distance of recorded contour a point is on it, near a lid
-    ``dist`` long: :attr:`~core2d.resolution.Resolution.near` (2 tol + the
-    jitter), at most :func:`lid_end_radius` for a short lid, whose ends'
-    recorded pieces would otherwise put its whole middle on the map."""
-    r = lid_end_radius(res, dist)
-    return min(res.near, r) if r < end_radius(res) else res.near
-
-
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
     """Within ``radius`` (default the same-contact radius, eps/2 + the
     sensor's jitter) of A_i or B_i: the same contact at the paper's
@@ -254,13 +215,14 @@ def in_reach(area, joint, point) -> bool:
 
 def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     """Is ``point`` new: farther than eps/2 from A_i and B_i and from every
-    contact an ancestor was split at by a pass, farther than 2 tol from the
-    map, within the lid's reach (:func:`in_reach`, with a noisy sensor and
+    contact an ancestor was split at by a pass
+    (:func:`~core2d.planner.short_lids.lid_end_radius` with a noisy sensor),
+    farther than 2 tol from the map (:func:`~core2d.planner.short_lids.on_map`),
+    within the lid's reach (:func:`in_reach`, with a noisy sensor and
     the probe's ``joint`` given), and not making a child that repeats the A and B of
     an ancestor (§4.4)?"""
     same = lid_end_radius(run.res, area.dist)
-    if _near_end(run, area, point, same) or run.known.distance(point) <= _on_map(run.res,
-                                                                               area.dist):
+    if _near_end(run, area, point, same) or run.known.distance(point) <= on_map(run.res, area.dist):
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False
@@ -283,13 +245,14 @@ def on_recorded(run: Exploration, area) -> bool:
     inside it) whose C_A^B the robot has recorded but whose pieces do not
     chain (:meth:`~core2d.planner.known.KnownContour.covers`): nothing
     hides behind it, and the W3 proof (no free line crosses it past the
-    noisy record) would make W3 of a traced wall. Perfect sensing
-    (jitter 0) leaves the paper's flow as it is."""
+    noisy record) would make W3 of a traced wall. A short lid's middle band
+    must lie on the map too (:func:`~core2d.planner.short_lids.on_map`).
+    Perfect sensing (jitter 0) leaves the paper's flow as it is."""
     if run.res.jitter == 0:
         return False
     k = int(np.ceil(area.dist / run.res.fan_spacing)) + 1
     pts = area.a + np.linspace(0.0, 1.0, k)[:, None] * (area.b - area.a)
-    near = _on_map(run.res, area.dist)  # a short lid: its middle band is off the map
+    near = on_map(run.res, area.dist)  # a short lid: its middle band is off the map
     return all(run.known.distance(p) <= near for p in pts)
 
 

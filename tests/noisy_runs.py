@@ -18,17 +18,18 @@ from slicer.contact.exact import ExactContact
 __all__ = ["coverages"]
 
 
-def coverages(loops, ws, noise: float, seeds, eps: float = 1.0) -> np.ndarray:
+def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
+              taxel: float = 0.0) -> np.ndarray:
     """(len(seeds),) reachable coverage within eps/2 + 2 ``noise`` (``noise``
-    in eps) of ``loops`` sensed in the workspace ``ws`` (exact backend), one
-    run per sensor seed; asserts the per-seed targets (module doc) and a
-    noiseless coverage >= 0.99."""
+    and the taxel spacing ``taxel`` in eps) of ``loops`` sensed in the
+    workspace ``ws`` (exact backend), one run per sensor seed; asserts the
+    per-seed targets (module doc) and a noiseless coverage >= 0.99."""
     contact = ExactContact(loops)
     base = sense_slice(contact, ws, eps)
     assert sensor_metrics(loops, base, eps, 0.0)["coverage_sensor"] >= 0.99
     covs = []
     for seed in seeds:
-        res = sense_slice(contact, ws, eps, sensor=SensorModel.of_eps(eps, noise, 0.0, seed))
+        res = sense_slice(contact, ws, eps, sensor=SensorModel.of_eps(eps, noise, taxel, seed))
         m = sensor_metrics(loops, res, eps, noise * eps)
         assert not res.stats.budget_hit, f"seed {seed}"
         assert m["precision_sensor"] >= 0.98, f"seed {seed}: {m['precision_sensor']:.4f}"

@@ -23,7 +23,10 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    them facing a gap) -- another pass, another side: it plays the role of Theorem 1's pass through
    L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
    new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
-   everything recorded, and behind the lid or near it: :func:`in_reach`)
+   everything recorded, and behind the lid or near it: :func:`in_reach`;
+   with a noisy sensor the radii widen by the jitter, at most to the middle
+   band eps/2 wide that a short lid keeps:
+   :func:`~core2d.planner.short_lids.lid_end_radius`)
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
@@ -75,6 +78,7 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.regions import Posture, cross, near_probe
+from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.tracing import reread_pass
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
@@ -167,8 +171,8 @@ def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
-    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2, margin=end_radius(run.res),
-                                min_gap=run.angle_tol)
+    return run.known.free_lines(area.a, area.b, spacing=run.eps / 2,
+                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
 
 
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
@@ -211,12 +215,14 @@ def in_reach(area, joint, point) -> bool:
 
 def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     """Is ``point`` new: farther than eps/2 from A_i and B_i and from every
-    contact an ancestor was split at by a pass, farther than 2 tol from the
-    map, within the lid's reach (:func:`in_reach`, with a noisy sensor and
+    contact an ancestor was split at by a pass
+    (:func:`~core2d.planner.short_lids.lid_end_radius` with a noisy sensor),
+    farther than 2 tol from the map (:func:`~core2d.planner.short_lids.on_map`),
+    within the lid's reach (:func:`in_reach`, with a noisy sensor and
     the probe's ``joint`` given), and not making a child that repeats the A and B of
     an ancestor (§4.4)?"""
-    same = end_radius(run.res)
-    if _near_end(run, area, point, same) or run.known.distance(point) <= run.res.near:
+    same = lid_end_radius(run.res, area.dist)
+    if _near_end(run, area, point, same) or run.known.distance(point) <= on_map(run.res, area.dist):
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
         return False
@@ -239,13 +245,15 @@ def on_recorded(run: Exploration, area) -> bool:
     inside it) whose C_A^B the robot has recorded but whose pieces do not
     chain (:meth:`~core2d.planner.known.KnownContour.covers`): nothing
     hides behind it, and the W3 proof (no free line crosses it past the
-    noisy record) would make W3 of a traced wall. Perfect sensing
-    (jitter 0) leaves the paper's flow as it is."""
+    noisy record) would make W3 of a traced wall. A short lid's middle band
+    must lie on the map too (:func:`~core2d.planner.short_lids.on_map`).
+    Perfect sensing (jitter 0) leaves the paper's flow as it is."""
     if run.res.jitter == 0:
         return False
     k = int(np.ceil(area.dist / run.res.fan_spacing)) + 1
     pts = area.a + np.linspace(0.0, 1.0, k)[:, None] * (area.b - area.a)
-    return all(run.known.distance(p) <= run.res.near for p in pts)
+    near = on_map(run.res, area.dist)  # a short lid: its middle band is off the map
+    return all(run.known.distance(p) <= near for p in pts)
 
 
 def reversed_lid(run: Exploration, area) -> bool:

@@ -84,8 +84,8 @@ def means_resolve_half_eps(res: Resolution) -> bool:
     True
     >>> resolves_half_eps(Resolution.of(1.0, noise=0.3, taxel=0.25))
     False
-    >>> means_resolve_half_eps(Resolution.of(1.0, noise=1.0)), means_resolve_half_eps(Resolution.of(1.0))
-    (False, False)
+    >>> [means_resolve_half_eps(Resolution.of(1.0, noise=s)) for s in (0.0, 0.1, 1.0)]
+    [False, True, False]
     """
     return 0.0 < res.mean_jitter <= res.eps / 2.0 - res.tol or resolves_half_eps(res)
 

@@ -104,12 +104,13 @@ def reread_jump(probe: Robot, r):
     other (sigma 0.3 eps with taxels 0.25 eps: mean jitter 0.38 eps), so
     the averaged P_2nd (and a pass's C, :func:`reread_pass`) is a contact
     at the paper's resolution although single readings (jitter 1.52 eps)
-    are not. Measured at sigma 0.3, taxel 0.25 (exact backend, sensor seeds
-    0-2, the ``comb``, ``star``, ``undercut`` and ``islands-1`` outlines of
-    ``tests/outlines.py``, 21 runs): total motions 48,403 -> 39,440, mean
-    coverage within eps/2 + 2 sigma 0.913 -> 0.917 (per outline both ways,
-    the seed lottery); a constructed comb (``tests/test_core2d_noisy_means.py``,
-    seeds 0-5): 0.922 -> 0.938, motions 19,747 -> 18,607. Earlier, on
+    are not. Measured at sigma 0.3, taxel 0.25, sensor seeds 0-2: the 12
+    outlines of the sensor study (exact backend, 36 runs) 64,243 -> 56,483
+    motions, mean coverage within eps/2 + 2 sigma 0.943 -> 0.942 (per
+    outline both ways, the seed lottery); 11 scene and mesh slices (33
+    runs) 139,419 -> 102,517 motions, coverage 0.948 -> 0.958; a
+    constructed comb (``tests/test_core2d_noisy_means.py``, seeds 0-5):
+    0.922 -> 0.938, motions 19,747 -> 18,607. Earlier, on
     ``star``-0 seeds 0-11, the re-read quadrupled the *unknown* lids
     reported deeper than eps inside material (633 -> 2,486 eps; they count
     in no coverage or precision figure). With sigma 1 eps (mean jitter

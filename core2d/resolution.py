@@ -81,16 +81,6 @@ class Resolution:
         return 3.0 * 2.0 ** 0.5 * self.noise + self.taxel
 
     @property
-    def mean_jitter(self) -> float:
-        """How far apart two means of :attr:`contact_reads` readings of one
-        tip contact may lie: 3 sqrt(2) noise / sqrt(k) plus half a taxel (a
-        contact within taxel / 2 of the tip is reported at the tip). The
-        planner takes such means where re-reading is free (the probe stands
-        still: a jump's P_2nd, a pass's C; ``core2d.planner.tracing``).
-        0 for the paper's perfect sensing."""
-        return 3.0 * 2.0 ** 0.5 * self.noise / self.contact_reads ** 0.5 + self.taxel / 2.0
-
-    @property
     def tip_zone(self) -> float:
         """eps / 2 (+ :attr:`jitter`): contacts closer than this are one
         contact at the paper's resolution (the same-point radius); near the

@@ -48,15 +48,12 @@ def _touching(sensor):
 
 
 @pytest.mark.parametrize("reread", [reread_jump, reread_pass])
-@pytest.mark.parametrize("level", [(NOISE, 0.0), (0.3, 0.25)])
-def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact(reread, level):
-    """P_2nd of a jump (reread_jump) and a pass's contact C (reread_pass) alike;
-    also at sigma 0.3 eps with taxels 0.25 eps, where single readings do not
-    resolve eps/2 but means of 25 do (``means_resolve_half_eps``)."""
+def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact(reread):
+    """P_2nd of a jump (reread_jump) and a pass's contact C (reread_pass) alike."""
     truth = np.array([3.0, 22.0])
     one, mean = [], []
     for seed in range(20):
-        probe, r = _touching(SensorModel.of_eps(1.0, *level, seed))
+        probe, r = _touching(SensorModel.of_eps(1.0, NOISE, 0.0, seed))
         motions = probe.motions
         p2, pose = reread(probe, r)
         assert probe.motions == motions  # re-reading is no motion
@@ -68,10 +65,9 @@ def test_reread_jump_averages_free_readings_of_a_noisy_tip_contact(reread, level
 
 @pytest.mark.parametrize("reread", [reread_jump, reread_pass])
 def test_reread_jump_keeps_a_perfect_or_a_coarse_reading(reread):
-    """A perfect sensor, and one whose means of 25 readings of one point do
-    not resolve eps/2 (sigma 1 eps: 0.85 eps apart): the jump's own reading,
-    no re-read."""
-    for sensor in (None, SensorModel.of_eps(1.0, 1.0, 0.0, 0)):
+    """A perfect sensor, and one whose readings of one point do not resolve
+    eps/2 (sigma 0.3 eps, taxels 0.25 eps): the jump's own reading, no re-read."""
+    for sensor in (None, SensorModel.of_eps(1.0, 0.3, 0.25, 0)):
         probe, r = _touching(sensor)
         state = None if sensor is None else probe.sensor.rng.bit_generator.state
         p2, pose = reread(probe, r)

@@ -26,7 +26,6 @@ MODULES = [
     "core2d.sim.codes",
     "core2d.visibility",
     "core2d.planner.known",
-    "core2d.planner.grazing",
     "core2d.planner.local_search",
     "core2d.planner.tip_bound",
     "core2d.truth.reachability",

@@ -60,34 +60,14 @@ import numpy as np
 from core2d.planner.regions import cross
 from core2d.resolution import Resolution
 
-__all__ = ["beyond_ends", "steep_enough", "resolves_half_eps", "means_resolve_half_eps",
-           "end_radius", "crosses_lid", "Blockers"]
+__all__ = ["beyond_ends", "steep_enough", "resolves_half_eps", "end_radius", "crosses_lid",
+           "Blockers"]
 
 
 def resolves_half_eps(res: Resolution) -> bool:
     """0 < jitter <= eps/2 - tol: a noisy sensor whose two readings of one
     point stay within the paper's same-point radius eps/2."""
     return 0.0 < res.jitter <= res.eps / 2.0 - res.tol
-
-
-def means_resolve_half_eps(res: Resolution) -> bool:
-    """0 < :attr:`~core2d.resolution.Resolution.mean_jitter` <= eps/2 - tol:
-    two *means* of repeated readings of one tip contact stay within the
-    paper's same-point radius eps/2 (§3.1), though single readings may not.
-
-    With 25 readings (:attr:`~core2d.resolution.Resolution.contact_reads`)
-    the mean scatters a fifth as much as one reading: sigma <= 0.53 eps
-    without taxels, sigma 0.3 eps with taxels 0.25 eps (mean jitter 0.38
-    eps), and everything :func:`resolves_half_eps` admits.
-
-    >>> means_resolve_half_eps(Resolution.of(1.0, noise=0.3, taxel=0.25))
-    True
-    >>> resolves_half_eps(Resolution.of(1.0, noise=0.3, taxel=0.25))
-    False
-    >>> [means_resolve_half_eps(Resolution.of(1.0, noise=s)) for s in (0.0, 0.1, 1.0)]
-    [False, True, False]
-    """
-    return 0.0 < res.mean_jitter <= res.eps / 2.0 - res.tol or resolves_half_eps(res)
 
 
 def end_radius(res: Resolution) -> float:

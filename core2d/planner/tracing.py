@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.areas import pivot_G, register
-from core2d.planner.grazing import means_resolve_half_eps
+from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 from core2d.planner.robot import Robot
 from core2d.readings import LEFT, RIGHT, TIP
@@ -99,26 +99,17 @@ def reread_jump(probe: Robot, r):
     re-read whose tip contact lies farther than the same-contact radius from
     the first reading is left out); a body contact is kept as read.
 
-    Only while :func:`~core2d.planner.grazing.means_resolve_half_eps`: the
-    means of two such re-reads of one point lie within eps/2 - tol of each
-    other (sigma 0.3 eps with taxels 0.25 eps: mean jitter 0.38 eps), so
-    the averaged P_2nd (and a pass's C, :func:`reread_pass`) is a contact
-    at the paper's resolution although single readings (jitter 1.52 eps)
-    are not. Measured at sigma 0.3, taxel 0.25, sensor seeds 0-2: the 12
-    outlines of the sensor study (exact backend, 36 runs) 64,243 -> 56,483
-    motions, mean coverage within eps/2 + 2 sigma 0.943 -> 0.942 (per
-    outline both ways, the seed lottery); 11 scene and mesh slices (33
-    runs) 139,419 -> 102,517 motions, coverage 0.948 -> 0.958; a
-    constructed comb (``tests/test_core2d_noisy_means.py``, seeds 0-5):
-    0.922 -> 0.938, motions 19,747 -> 18,607. Earlier, on
-    ``star``-0 seeds 0-11, the re-read quadrupled the *unknown* lids
-    reported deeper than eps inside material (633 -> 2,486 eps; they count
-    in no coverage or precision figure). With sigma 1 eps (mean jitter
-    0.85 eps) it is off; sigma <= 0.106 eps and taxels alone are unchanged
-    (:func:`~core2d.planner.grazing.resolves_half_eps` implies it)."""
+    Only while :func:`~core2d.planner.grazing.resolves_half_eps` (two
+    readings of one point within eps/2 - tol: sigma <= 0.106 eps without
+    taxels). Beyond it, measured on the ``star`` outline, seed 0, sigma
+    0.3 eps, taxels 0.25 eps, seeds 0-11: the re-read raised coverage on
+    seeds 0-2 (0.861 -> 0.929 on average) but quadrupled the reported lids
+    lying deeper than eps inside material (633 -> 2,486 eps, mostly the
+    audit's areas between loose ends of the record and their children);
+    why is not known, so it is off there."""
     c = r.contacts[0]
     k = probe.resolution.contact_reads
-    if k <= 1 or c.face != TIP or not means_resolve_half_eps(probe.resolution):
+    if k <= 1 or c.face != TIP or not resolves_half_eps(probe.resolution):
         return c.point, Posture(r.joint, r.direction)
     same = probe.resolution.tip_zone
     pts, joints, dirs = [c.point], [r.joint], [r.direction]
@@ -138,7 +129,7 @@ def reread_pass(probe: Robot, r):
     revisit pass) and the posture that touched it, read again where the
     probe stopped like P_2nd (:func:`reread_jump`: the means of
     :attr:`~core2d.resolution.Resolution.contact_reads` readings, only while
-    those means resolve eps/2; else the one reading). Returns
+    the sensor resolves eps/2; else the one reading). Returns
     ``((2,) float C, Posture)``; ``r`` must hold a tip contact.
 
     Why: C becomes an end of the children A_iC and CB_i, and with a fine

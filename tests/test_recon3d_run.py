@@ -115,9 +115,11 @@ def test_colour_bar_and_its_title_are_backed_white(saved):
 
     p = coverage_plotter(pv.read(saved / "scene.vtm"))
     try:
-        texts = [a for r in p.renderers for a in r.GetActors2D()
+        props = [r.GetViewProps().GetItemAsObject(i) for r in p.renderers
+                 for i in range(r.GetViewProps().GetNumberOfItems())]
+        texts = [a for a in props
                  if a.IsA("vtkTextActor") and "F@1% counts" in (a.GetInput() or "")]
-        bars = [a for r in p.renderers for a in r.GetActors2D() if a.IsA("vtkScalarBarActor")]
+        bars = [a for a in props if a.IsA("vtkScalarBarActor")]
         assert len(texts) == 1 and len(bars) == 1
         assert texts[0].GetTextProperty().GetBackgroundOpacity() > 0.5
         assert texts[0].GetTextProperty().GetBackgroundColor() == (1.0, 1.0, 1.0)

@@ -27,6 +27,7 @@ MODULES = [
     "core2d.visibility",
     "core2d.planner.known",
     "core2d.planner.local_search",
+    "core2d.planner.mouths",
     "core2d.planner.tip_bound",
     "core2d.truth.reachability",
     "core2d.truth.metrics",

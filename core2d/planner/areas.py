@@ -33,6 +33,8 @@ class Area:
     tries : int -- passes through the lid that found nothing new (revisits).
     seen : tuple of (2,) float -- contacts at which revisit passes split
         this area's ancestors (never new twice).
+    mouth : bool -- a jump's area reading between eps and eps + the sensor's
+        jitter: processed, and W2 at a dead end (:mod:`core2d.planner.mouths`).
     """
 
     a: np.ndarray
@@ -50,6 +52,7 @@ class Area:
     stale: int = 0
     tries: int = 0
     seen: tuple = ()
+    mouth: bool = False
 
     @property
     def dist(self) -> float:

@@ -234,10 +234,22 @@ class KnownContour:
         in the pieces' direction (B after A along the pieces)?"""
         return self.chain(a, b, tol) is not None
 
+    def widest_hop(self, a, b, tol: float) -> float | None:
+        """The widest gap that the chain of :meth:`covers` from A to B hops
+        between two pieces (each hop is at most ``join``; 0.0 for a chain of
+        one piece), or None when no chain leads there."""
+        found = self._chain(a, b, tol, ())
+        return None if found is None else found[1]
+
     def chain(self, a, b, tol: float, exclude=()):
         """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)
         polyline, or None when no chain of pieces leads there; pieces whose
         index is in ``exclude`` are not used."""
+        found = self._chain(a, b, tol, exclude)
+        return None if found is None else found[0]
+
+    def _chain(self, a, b, tol: float, exclude):
+        """:meth:`chain` and :meth:`widest_hop` together, or None."""
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
@@ -264,9 +276,10 @@ class KnownContour:
             todo.extend((j, float(first[j] + k), i) for j, k in self._next[i])
         return None
 
-    def _walk(self, last, end_pos, reached, came) -> np.ndarray:
+    def _walk(self, last, end_pos, reached, came) -> tuple[np.ndarray, float]:
         """Points of the chain that ends in piece ``last`` at ``end_pos``:
-        each piece from where it was reached to its end (or to B)."""
+        each piece from where it was reached to its end (or to B); and the
+        widest hop between two pieces of it."""
         parts, i, stop, seen = [], last, end_pos, set()
         while i is not None and i not in seen:  # a re-reached piece can close a cycle
             seen.add(i)
@@ -274,7 +287,9 @@ class KnownContour:
             i = came[i]
             if i is not None:
                 stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
-        return np.concatenate(parts[::-1])
+        parts = parts[::-1]
+        hops = [float(np.hypot(*(q[0] - p[-1]))) for p, q in zip(parts, parts[1:])]
+        return np.concatenate(parts), max(hops, default=0.0)
 
     def _span(self, i, start, stop) -> np.ndarray:
         """Points of piece ``i`` between global segment positions ``start`` and ``stop``."""

@@ -77,6 +77,7 @@ import shapely
 
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
+from core2d.planner.mouths import covered
 from core2d.planner.regions import Posture, cross, near_probe
 from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.tracing import reread_pass
@@ -281,7 +282,7 @@ def revisit_one(run: Exploration, area):
     Returns a W3 reason when the lid passed its proof or its probing and
     waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
-    if known.covers(area.a, area.b, run.res.tip_zone):
+    if covered(known, area.a, area.b, run.res.tip_zone, run.res):
         return run.close(area, "traced", "C_A^B traced through other areas")
     if on_recorded(run, area):
         return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")

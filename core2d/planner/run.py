@@ -48,6 +48,7 @@ from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
+from core2d.planner.mouths import covered, is_mouth
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
@@ -198,6 +199,8 @@ class Exploration:
         (``flow.defer``); in the paper's flow it is W3 at once (§4.2.1)."""
         if not self.flow.defer:
             return self.close(area, "W3", why + " (§4.2.1)")
+        if area.mouth:  # reads no wider than eps + jitter (core2d.planner.mouths)
+            return self.close(area, "W2", why + "; Dist(A,B) < eps + the sensor's jitter")
         rec = self.result.areas[area.index]
         rec.outcome, rec.note = "deferred", why
         self.deferred.append(area)
@@ -235,9 +238,12 @@ class Exploration:
     def process(self, area):
         probe, eps = self.probe, self.eps
         if area.dist < self.res.w2_dist:  # eps (+ the sensor's jitter, Resolution.w2_dist)
-            return self.close(area, "W2", "Dist(A,B) < eps")
+            if not (self.flow.map and is_mouth(self.res, area.dist, area.rule)):
+                return self.close(area, "W2", "Dist(A,B) < eps")
+            area.mouth = True  # reads >= eps: processed, W2 at a dead end
         same = self.same
-        if self.flow.covers and self.known.covers(area.a, area.b, same):
+        # no hop across a mouth (a gap that reads >= eps) counts (core2d.planner.mouths)
+        if self.flow.covers and covered(self.known, area.a, area.b, same, self.res):
             return self.close(area, "traced", "C_A^B traced through other areas")
         if area.zero_G:
             return self.zero_G(area)

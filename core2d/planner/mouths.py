@@ -1,0 +1,87 @@
+"""Mouths whose width a fine noisy sensor cannot tell from eps.
+
+§3.1 makes an area W2 when Dist(A_i, B_i) < eps: the chord A_iB_i then stays
+within eps/2 of C_{A_i}^{B_i}, and the flow does not enter it. A_i and B_i
+are readings; with a noisy sensor two readings of a point lie up to the
+jitter apart (:attr:`~core2d.resolution.Resolution.jitter`), so the planner
+closes every area that *reads* shorter than eps + jitter as W2
+(:attr:`~core2d.resolution.Resolution.w2_dist`), and its map joins recorded
+pieces across gaps that short: a gap narrower than eps may read that much
+wider.
+
+That closed real openings too. A slit 1.26 eps wide between the thin outer
+wall of ``trimesh_octagonal_pocket`` and its body, ~117 eps long and open at
+both ends, reads 0.96 - 1.40 eps across its mouths at sigma 0.1 eps
+(w2_dist 1.42 eps): each mouth was W2 at once or "traced through other
+areas" -- the map's chain from A_i to B_i hopped the mouth itself -- and the
+slit's walls were never touched (reachable coverage within eps/2 + 2 sigma
+0.68 on z1, noiseless 1.00). Two rules, only where two readings of a point
+resolve eps/2 (:func:`~core2d.planner.grazing.resolves_half_eps`: sigma
+<= 0.106 eps, or taxels alone; perfect sensing has no jitter and is
+unchanged):
+
+* **A mouth is processed** (:func:`is_mouth`): an area that the contact
+  point's jump across an opening made -- Case 2-1 / 2-2 (§4.3.2) or a hop of
+  the tip over a gap (``core2d.planner.tracing``) -- and that reads at least
+  eps (the paper's own test, applied to the reading) but less than eps +
+  jitter. The flow processes it like any area (Theorem 1's pass, the local
+  search, the trace); at a dead end (``Exploration.defer``) it is closed
+  W2 as before, never left to the revisit, since its reading does not show
+  it wider than eps. Areas split off a lid along recorded contour (escape,
+  revisit, one-sided, ...) stay W2 at once: processing those too lost
+  coverage in the slots ~1 eps wide of the ``comb`` outlines (0.98 -> 0.91).
+* **A chain that hops a mouth covers nothing** (:func:`covered`).
+"""
+from __future__ import annotations
+
+from core2d.planner.grazing import resolves_half_eps
+from core2d.resolution import Resolution
+
+__all__ = ["JUMPS", "is_mouth", "covered"]
+
+JUMPS = ("case2-1", "case2-2", "hop")
+"""Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
+sides of an opening that the contact point jumped or the tip hopped across."""
+
+
+def is_mouth(res: Resolution, dist: float, rule: str) -> bool:
+    """Whether an area of ``rule`` reading ``dist`` = Dist(A_i, B_i) is a
+    mouth: made by a jump (:data:`JUMPS`), eps <= dist < eps + jitter, under a
+    sensor whose readings resolve eps/2.
+
+    Examples
+    --------
+    >>> from core2d.resolution import Resolution
+    >>> fine = Resolution.of(1.0, noise=0.1)  # jitter 0.424
+    >>> [is_mouth(fine, d, "case2-1") for d in (0.9, 1.2, 1.5)]
+    [False, True, False]
+    >>> is_mouth(fine, 1.2, "escape"), is_mouth(Resolution.of(1.0), 1.0, "hop")
+    (False, False)
+    """
+    return (rule in JUMPS and resolves_half_eps(res)
+            and res.eps <= dist < res.w2_dist)
+
+
+def covered(known, a, b, tol: float, res: Resolution) -> bool:
+    """C_{A_i}^{B_i} traced through other areas: a chain of recorded pieces
+    leads from A_i to B_i (:meth:`~core2d.planner.known.KnownContour.covers`)
+    and, under a sensor whose readings resolve eps/2, every hop between two
+    of its pieces is narrower than eps.
+
+    The map joins pieces across gaps narrower than the W2 distance eps +
+    jitter, so a chain may hop an opening that reads between eps and eps +
+    jitter -- the mouth of the very area asked about. Such a chain is no
+    evidence that C_A^B was traced (§3.1 approximates only gaps narrower
+    than eps). With perfect sensing the map joins only gaps narrower than
+    eps and this is ``covers``; a coarse sensor (sigma 0.3 eps) keeps
+    ``covers``, whose readings cannot tell eps from 2.5 eps.
+
+    known : KnownContour
+    a, b : (2,) float -- A_i and B_i.
+    tol : float -- how near A_i and B_i the chain must start and end.
+    res : Resolution -- the sensor's stated resolution.
+    """
+    if not resolves_half_eps(res):
+        return known.covers(a, b, tol)
+    hop = known.widest_hop(a, b, tol)
+    return hop is not None and hop < res.eps

@@ -17,11 +17,18 @@ Example (the README has more)::
 matplotlib): the public names below are loaded from their modules on first
 use (PEP 562 ``__getattr__``), so ``recon3d --help`` and ``import recon3d``
 in a notebook start at once and the first ``recon3d.run`` pays for the rest.
+
+Importing it first also holds numpy's and OpenBLAS's AVX-512 kernels back
+(:mod:`recon3d.numerics`), so a run rounds alike on every x86-64 machine.
 """
 from __future__ import annotations
 
 import importlib
 from typing import TYPE_CHECKING
+
+from recon3d import numerics as _numerics
+
+_numerics.pin()  # before numpy loads: the same rounding on every x86-64 CPU
 
 if TYPE_CHECKING:  # the same names, eagerly, for type checkers and IDEs
     from recon3d.api import Result, WorkerDied, __version__, run

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import recon3d  # noqa: F401  (first: pins the numerics before numpy loads, recon3d.numerics)
+
 import pytest
 
 SHARED_MESHES = Path(__file__).resolve().parents[1].parent / "shared" / "meshes"

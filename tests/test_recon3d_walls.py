@@ -2,7 +2,8 @@
 
 * Rooms, each with one job: ``sensing/``, ``surface/``, ``score/``, ``io/``,
   ``viz/``, ``jobs/``, ``cli/``, ``benchmark/``; the shared modules
-  ``checks`` <- ``param`` <- ``config`` <- ``spellings`` <- ``records`` import no room; ``api`` joins the
+  ``checks`` <- ``param`` <- ``config`` <- ``spellings`` <- ``records`` import no room, nor
+  does ``numerics`` (standard library only, imported first by ``__init__``); ``api`` joins the
   rooms for ``recon3d.run``. Every arrow points one way (ALLOWED).
 * Nothing imports ``recon3d.cli`` but ``recon3d/__main__.py`` (and the
   console script); ``surface/``, ``score/``, ``io/`` and ``viz/`` never
@@ -22,7 +23,8 @@ import sys
 import pytest
 
 RECON3D = pathlib.Path(__file__).resolve().parents[1] / "recon3d"
-SHARED = {"recon3d.checks", "recon3d.param", "recon3d.config", "recon3d.spellings", "recon3d.records"}
+SHARED = {"recon3d.checks", "recon3d.param", "recon3d.config", "recon3d.spellings", "recon3d.records",
+          "recon3d.numerics"}
 LIBS = "recon3d.viz.libs"
 # room (or top-level module) -> recon3d modules it may import besides itself and SHARED
 ALLOWED = {
@@ -97,7 +99,7 @@ def test_the_rooms_exist_and_the_top_level_is_small():
     assert rooms == ["benchmark", "cli", "io", "jobs", "score", "sensing", "surface", "viz"]
     top = sorted(p.name for p in RECON3D.glob("*.py"))
     assert top == ["__init__.py", "__main__.py", "api.py", "checks.py", "config.py",
-                   "param.py", "records.py", "spellings.py"]
+                   "numerics.py", "param.py", "records.py", "spellings.py"]
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(RECON3D)))

@@ -56,6 +56,8 @@ class ContourTruth:
     in_hole : (m,) bool or None -- nearest a hole loop of the section
         (:func:`recon3d.score.evaluate.on_holes`, made by the worker that sensed the slice;
         None: computed where needed).
+    resolvable : (m,) bool or None -- not inside an opening narrower than eps
+        (:func:`core2d.truth.resolvable.resolvable`; None: computed where needed).
     """
 
     points: np.ndarray
@@ -63,11 +65,12 @@ class ContourTruth:
     reachable: np.ndarray
     covered: np.ndarray
     in_hole: np.ndarray | None = None
+    resolvable: np.ndarray | None = None
 
     @classmethod
     def empty(cls) -> ContourTruth:
         z = np.zeros(0, dtype=bool)
-        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy(), z.copy())
+        return cls(np.zeros((0, 2)), np.zeros(0), z, z.copy(), z.copy(), z.copy())
 
 
 @dataclass

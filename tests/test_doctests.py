@@ -31,6 +31,8 @@ MODULES = [
     "core2d.planner.tip_bound",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
+    "core2d.truth.resolvable",
+    "recon3d.numerics",
     "recon3d.io.documents",
     "recon3d.viz.plot",
     "recon3d.viz.figure2d",
@@ -39,6 +41,7 @@ MODULES = [
     "recon3d.io.lock",
     "recon3d.sensing.pool",
     "recon3d.cli.printing",
+    "recon3d.score.report",
     "recon3d.cli.signals",
 ]
 

@@ -38,7 +38,10 @@ def saved(pocket, tmp_path_factory):
 
 def test_scene_without_undercut_reconstructs_in_the_slab(pocket):
     surf = pocket.metrics["total"]["surface"]
-    assert set(surf) == BLOCK | {"reachable"} and set(surf["reachable"]) == BLOCK
+    assert set(surf) == BLOCK | {"reachable", "resolvable"}
+    assert set(surf["reachable"]) == set(surf["resolvable"]) == BLOCK
+    # no opening narrower than eps here: the part eps resolves is the reachable part
+    assert surf["resolvable"] == surf["reachable"]
     assert set(surf["fscore"]) == {"0.5%", "1%", "2%"}
     assert surf["fscore"]["1%"] >= 0.95 and surf["reachable"]["fscore"]["1%"] >= 0.95
     assert surf["chamfer_l1"] == pytest.approx((surf["accuracy"] + surf["completeness"]) / 2)

@@ -16,6 +16,10 @@ Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
   ``eps / 2`` is the natural tolerance: every
   point of a W2 chord with ``Dist(A, B) < eps`` lies within ``eps / 2`` of
   ``A`` or ``B``;
+* **coverage_resolvable** -- the same over the reachable contour that the
+  paper's resolution resolves (:mod:`core2d.truth.resolvable`: not inside an
+  opening narrower than eps, which §3.1 closes by a W2 chord and never enters);
+  ``resolvable_length`` is its length;
 * **precision** -- length share of the detected geometry (W1 polylines and
   W2 segments, cut into pieces <= ``spacing``) within ``tol`` of the true
   contour; the two directed Hausdorff distances use the same samples
@@ -44,17 +48,22 @@ from core2d.result import SliceResult
 
 from .nearest import segment_distances
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
+from .resolvable import resolvable
 
 __all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs"]
 
 _RATIOS = {"coverage": ("covered_length", "reachable_length"),
            "precision": ("precise_length", "detected_length"),
            "coverage_sensor": ("covered_length_sensor", "reachable_length"),
+           "coverage_resolvable": ("covered_resolvable_length", "resolvable_length"),
+           "coverage_resolvable_sensor": ("covered_resolvable_length_sensor",
+                                          "resolvable_length"),
            "precision_sensor": ("precise_length_sensor", "detected_length")}
 _MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected", "eps", "tol",
              "spacing", "sensor_tol")
 #: the keys of :func:`slice_metrics` that :func:`sensor_metrics` reports at the sensor's tolerance
-_SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision", "w3_unsound_count")
+_SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision", "w3_unsound_count",
+                "covered_resolvable_length", "coverage_resolvable")
 
 
 def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
@@ -144,7 +153,8 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
 
 
 def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = None,
-                  spacing: float | None = None, samples=None, lid_tol: float = 0.0) -> dict:
+                  spacing: float | None = None, samples=None, lid_tol: float = 0.0,
+                  resolved=None) -> dict:
     """Metrics of one :class:`core2d.result.SliceResult` against the true contour.
 
     Parameters
@@ -160,6 +170,8 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     lid_tol : float -- reachable contour behind a W3 lid within this of the
         lid itself is not hidden (0: any; :func:`sensor_metrics` passes the
         sensor's tolerance).
+    resolved : (m,) bool, optional -- :func:`core2d.truth.resolvable.resolvable` of the
+        samples (computed here when not given).
 
     Returns
     -------
@@ -191,6 +203,10 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     behind_w2 = w2_arcs["member"][~w2_long].any(axis=0)
     covered = reach & ((d_true <= tol) | behind_w2)
     reachable_length = float(w[reach].sum())
+    resolved = (resolvable(loops, samp.points, eps) if resolved is None
+                else np.asarray(resolved, dtype=bool))
+    resolvable_length = float(w[reach & resolved].sum())
+    covered_resolvable = float(w[covered & resolved].sum())
     detected_length = float(dl.sum())
 
     # W3 lids (per-lid soundness) and unknown areas
@@ -219,6 +235,10 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
         "reachable_length": reachable_length,
         "covered_length": float(w[covered].sum()),
         "coverage": float(w[covered].sum() / reachable_length) if reachable_length > 0 else 1.0,
+        "resolvable_length": resolvable_length,
+        "covered_resolvable_length": covered_resolvable,
+        "coverage_resolvable": (covered_resolvable / resolvable_length
+                                if resolvable_length > 0 else 1.0),
         "w1_count": len(result.w1),
         "w1_length": float(np.hypot(*(w1b - w1a).T).sum()),
         "w2_count": len(result.w2),
@@ -256,7 +276,7 @@ def _point_chord(points, p, q) -> np.ndarray:
 
 
 def sensor_metrics(loops, result: SliceResult, eps: float, noise: float,
-                   spacing: float | None = None, samples=None) -> dict:
+                   spacing: float | None = None, samples=None, resolved=None) -> dict:
     """Coverage and precision at the tolerance a noisy sensor allows.
 
     A reading is off by the sensor's noise (standard deviation ``noise``),
@@ -267,13 +287,14 @@ def sensor_metrics(loops, result: SliceResult, eps: float, noise: float,
     ``w3_unsound_count`` of :func:`slice_metrics` at that tolerance (a lid is
     unsound when it hides reachable contour farther than eps from its ends
     and farther than the tolerance from the lid), each with the suffix
-    ``_sensor`` (reported beside the noiseless ones), and ``w3_soundness_sensor``. ``spacing`` and
-    ``samples`` as in :func:`slice_metrics` (default spacing eps / 4, the
+    ``_sensor`` (reported beside the noiseless ones), and ``w3_soundness_sensor``. ``spacing``,
+    ``samples`` and ``resolved`` as in :func:`slice_metrics` (default spacing eps / 4, the
     noiseless metrics' sampling).
     """
     tol = Resolution.of(eps, noise=noise).sensor_tol
     spacing = 0.25 * eps if spacing is None else spacing
-    m = slice_metrics(loops, result, eps, tol=tol, spacing=spacing, samples=samples, lid_tol=tol)
+    m = slice_metrics(loops, result, eps, tol=tol, spacing=spacing, samples=samples, lid_tol=tol,
+                      resolved=resolved)
     out = {"sensor_tol": tol, **{f"{k}_sensor": m[k] for k in _SENSOR_KEYS}}
     n = m["w3_count"]
     out["w3_soundness_sensor"] = 1.0 - m["w3_unsound_count"] / n if n else 1.0

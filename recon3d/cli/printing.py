@@ -8,7 +8,7 @@ from pathlib import Path
 from recon3d.api import Result
 from recon3d.config import diagonal
 from recon3d.records import MeshRun, SliceRun
-from recon3d.spellings import number
+from recon3d.spellings import number, percent
 
 __all__ = ["warn", "summary_lines", "format_seconds", "projected_seconds", "estimate_note",
            "LONG_RUN_SECONDS"]
@@ -102,7 +102,11 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     lines = [f"{run.name}: slices {fams}, eps {number(run.eps, '.4g')}, tol "
              f"{number(run.tol, '.3g')}, {run.jobs} job{'s' if run.jobs > 1 else ''}, "
              f"{number(run.seconds, '.1f')} s sensing"]
-    lines.append(f"  2D  reachable coverage {number(t.get('coverage'), '.4f')}  precision "
+    reach, resolved = t.get("reachable_length") or 0.0, t.get("resolvable_length") or 0.0
+    narrow = (f" ({number(t.get('coverage_resolvable'), '.4f')} of the part eps resolves: "
+              f"{percent(1.0 - resolved / reach)} of the reachable contour lies in openings "
+              f"narrower than eps, §3.1)") if reach > 0 and resolved < reach * (1 - 1e-3) else ""
+    lines.append(f"  2D  reachable coverage {number(t.get('coverage'), '.4f')}{narrow}  precision "
                  f"{number(t.get('precision'), '.4f')}  W3 soundness "
                  f"{number(t.get('w3_soundness'), '.4f')} ({t.get('w3_count', 0)} lids)")
     scores, chords = result.headline()

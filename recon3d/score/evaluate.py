@@ -22,12 +22,17 @@ rounding, from fixed-count seeded area-uniform samples):
   the slices of the families whose slab holds the sample); a
   reconstruction sample belongs to it when its nearest ground-truth sample
   does. ``reachable`` repeats the metrics on those samples.
+* **resolvable part** -- likewise, the reachable samples whose nearest
+  reference-contour sample the paper's resolution resolves (not inside an
+  opening narrower than eps, which §3.1 closes by a W2 chord and never enters:
+  :mod:`core2d.truth.resolvable`); ``resolvable`` repeats the metrics on those.
 * **inside a hole** -- a ground-truth sample whose nearest reference-contour
   sample lies on a hole of its section (a loop enclosed in the slice plane:
   no rod in that plane reaches it, §3.2); it is unreachable.
 * ``slab_share`` -- scored ground-truth samples / samples drawn over the whole
   mesh; ``reachable_share`` -- reachable scored samples / samples drawn over the
-  whole mesh (so ``reachable_share <= slab_share``).
+  whole mesh (so ``reachable_share <= slab_share``); ``resolvable_share`` likewise
+  (``<= reachable_share``).
 * ``touched_share`` -- the 2D coverage carried to 3D: the share of the
   reachable scored samples whose nearest reference-contour sample is within
   eps / 2 of W1 u W2. It says what the probe touched on the slices, nothing
@@ -44,6 +49,7 @@ import shapely
 import trimesh
 from scipy.spatial import cKDTree
 
+from core2d.truth.resolvable import resolvable
 from recon3d.config import diagonal
 from recon3d.score.closest import mesh_distances
 from recon3d.score.subdivide import subdivide_to_size
@@ -93,6 +99,8 @@ class ContourCloud:
     slabs : Domain -- slab k is family k's (first to last slice).
     in_hole : (m,) bool or None -- the sample lies on a hole loop of its section
         (None: on none).
+    resolvable : (m,) bool or None -- not inside an opening narrower than eps
+        (None: every sample).
     """
 
     points: np.ndarray
@@ -101,18 +109,40 @@ class ContourCloud:
     family: np.ndarray
     slabs: Domain
     in_hole: np.ndarray | None = field(default=None)
+    resolvable: np.ndarray | None = field(default=None)
 
     def classify(self, points) -> np.ndarray:
         """(n,) int8 for (n, 3) points: 0 in no family's slab, else the class of
         the nearest sample among the families whose slab holds the point:
         1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole
         (unreachable, on a hole loop of the section)."""
-        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-        best = np.full(len(points), np.inf)
-        cls = np.zeros(len(points), dtype=np.int8)
-        pad = 1e-9 * float(np.ptp(self.points, axis=0).max()) if len(self.points) else 0.0
+        return self.classes(self.nearest(points))
+
+    def classes(self, nearest: np.ndarray) -> np.ndarray:
+        """(n,) int8: :meth:`classify`'s class of each :meth:`nearest` sample (-1: 0)."""
+        j = np.asarray(nearest, dtype=np.int64)
+        if not len(self.points):
+            return np.zeros(len(j), dtype=np.int8)
         hole = (np.zeros(len(self.points), dtype=bool) if self.in_hole is None
                 else np.asarray(self.in_hole, dtype=bool))
+        c = np.where(self.covered, 1, np.where(self.reachable, 2, np.where(hole, 4, 3)))
+        return np.where(j >= 0, c[np.maximum(j, 0)], 0).astype(np.int8)
+
+    def resolved(self, nearest: np.ndarray) -> np.ndarray:
+        """(n,) bool: the :meth:`nearest` sample is reachable and resolvable (-1: False)."""
+        j = np.asarray(nearest, dtype=np.int64)
+        if not len(self.points):
+            return np.zeros(len(j), dtype=bool)
+        ok = self.reachable if self.resolvable is None else self.reachable & self.resolvable
+        return (j >= 0) & ok[np.maximum(j, 0)]
+
+    def nearest(self, points) -> np.ndarray:
+        """(n,) int for (n, 3) points: the nearest sample among the families whose slab
+        holds the point (-1 in no family's slab)."""
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        best = np.full(len(points), np.inf)
+        out = np.full(len(points), -1, dtype=np.int64)
+        pad = 1e-9 * float(np.ptp(self.points, axis=0).max()) if len(self.points) else 0.0
         for k in range(len(self.slabs.lo)):
             sel = np.flatnonzero(self.family == k)
             slab = Domain(self.slabs.normals[k:k + 1], self.slabs.lo[k:k + 1],
@@ -121,13 +151,10 @@ class ContourCloud:
             if len(sel) == 0 or len(inside) == 0:
                 continue
             d, i = cKDTree(self.points[sel]).query(points[inside])
-            j = sel[i]
-            c = np.where(self.covered[j], 1, np.where(self.reachable[j], 2,
-                                                      np.where(hole[j], 4, 3)))
             better = d < best[inside]
             best[inside[better]] = d[better]
-            cls[inside[better]] = c[better]
-        return cls
+            out[inside[better]] = sel[i][better]
+        return out
 
 
 def on_holes(cut, points) -> np.ndarray:
@@ -162,7 +189,7 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
     families : list of recon3d.records.Family
     """
     pts, reach, cov, fam = [np.zeros((0, 3))], [np.zeros(0, bool)], [np.zeros(0, bool)], []
-    hole = [np.zeros(0, bool)]
+    hole, resolved = [np.zeros(0, bool)], [np.zeros(0, bool)]
     normals, lo, hi = [], [], []
     for k, f in enumerate(families):
         offsets = [s.slice.plane.offset for s in f.slices]
@@ -176,11 +203,13 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
                 cov.append(s.truth.covered)
                 hole.append(s.truth.in_hole if s.truth.in_hole is not None
                             else on_holes(s.slice, s.truth.points))
+                resolved.append(s.truth.resolvable if s.truth.resolvable is not None
+                                else resolvable(s.slice.loops, s.truth.points, s.metrics["eps"]))
                 fam.append(np.full(len(s.truth.points), k))
     fam = np.concatenate(fam) if fam else np.zeros(0, dtype=np.int64)
     slabs = Domain(np.array(normals).reshape(-1, 3), np.array(lo), np.array(hi))
     return ContourCloud(np.concatenate(pts), np.concatenate(reach), np.concatenate(cov),
-                        fam, slabs, np.concatenate(hole))
+                        fam, slabs, np.concatenate(hole), np.concatenate(resolved))
 
 
 def distances(points, mesh: trimesh.Trimesh) -> np.ndarray:
@@ -301,8 +330,9 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
 
     Returns
     -------
-    metrics : dict -- the ``total.surface`` block (with ``reachable``).
-    extra : dict -- ``slab_share``, ``reachable_share``, ``touched_share`` (module
+    metrics : dict -- the ``total.surface`` block (with ``reachable`` and ``resolvable``).
+    extra : dict -- ``slab_share``, ``reachable_share``, ``resolvable_share``,
+        ``touched_share`` (module
         doc), sample counts and tau values.
     """
     taus = {k: s * gt.diagonal for k, s in FSCORE_SHARES.items()}
@@ -322,19 +352,23 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
         lambda: (distances(rec[half_rec:], gt.mesh), to_rec(gt.points[half:])))
     d_rec = np.concatenate([d_rec0, d_rec1])
     d_gt = np.concatenate([d_gt0, d_gt1])
-    cls = cloud.classify(gt.points)
+    near = cloud.nearest(gt.points)
+    cls = cloud.classes(near)
     reach = (cls == 1) | (cls == 2)
+    resolved = cloud.resolved(near)
     if len(gt.points) and len(rec):
         _, j = cKDTree(gt.points).query(rec)
-        rec_reach = reach[j]
+        rec_reach, rec_resolved = reach[j], resolved[j]
     else:
-        rec_reach = np.zeros(len(rec), dtype=bool)
+        rec_reach = rec_resolved = np.zeros(len(rec), dtype=bool)
     out = _scores(d_rec, d_gt, taus)
     out["reachable"] = _scores(d_rec[rec_reach], d_gt[reach], taus)
+    out["resolvable"] = _scores(d_rec[rec_resolved], d_gt[resolved], taus)
     drawn = max(int(gt.drawn), 1)
     extra = {
         "slab_share": len(gt.points) / drawn,
         "reachable_share": float(reach.sum()) / drawn,
+        "resolvable_share": float(resolved.sum()) / drawn,
         "touched_share": float((cls == 1).sum() / reach.sum()) if reach.any() else None,
         "samples": {"ground_truth_drawn": int(gt.drawn), "ground_truth": int(len(gt.points)),
                     "reconstruction": int(len(rec)), "seeds": [0, seed]},

@@ -16,7 +16,7 @@ from recon3d.surface.solid import fuse
 
 __all__ = ["score", "domain", "SHARES"]
 
-SHARES = ("slab_share", "reachable_share", "touched_share")
+SHARES = ("slab_share", "reachable_share", "resolvable_share", "touched_share")
 """The shares of the ground truth that go with every scored surface (evaluate's module doc)."""
 
 
@@ -58,7 +58,8 @@ def score(run: MeshRun, recon: Reconstruction, samples: int = SAMPLES,
     -------
     surface : dict or None -- the ``total.surface`` block (None without a surface).
     info : dict -- domain, tau, sample counts, the shares of the ground truth
-        (``slab_share``, ``reachable_share``, ``touched_share``), and per family
+        (``slab_share``, ``reachable_share``, ``resolvable_share``, ``touched_share``), and
+        per family
         its own surface scored over its own slab (``families``) with, for 2+
         families, ``fused_vs_best``: fused F@1% minus the best family's own F@1%
         (the ``surface_eval`` block of metrics.json).

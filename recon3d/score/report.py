@@ -1,8 +1,9 @@
 """The headline of a scored run as text: what the summary prints and coverage.png shows.
 
 Every number says what it is measured over: F@1% over the scored ground
-truth (the slab, as a share of the whole ground truth) and over its
-reachable part; with several families, each family's own surface over its
+truth (the slab, as a share of the whole ground truth), over its
+reachable part and, where openings narrower than eps hold part of that, over
+the part eps resolves; with several families, each family's own surface over its
 own slab and the fused surface against the best of them. Numbers go through
 :func:`recon3d.spellings.number` (no negative zero).
 """
@@ -11,7 +12,11 @@ from __future__ import annotations
 from recon3d.score.unknowns import CAUSES
 from recon3d.spellings import number, percent
 
-__all__ = ["surface_lines", "chord_lines", "slicing_text"]
+__all__ = ["surface_lines", "chord_lines", "slicing_text", "NARROW"]
+
+NARROW = 0.001
+"""Share of the ground truth inside openings narrower than eps from which the summary also
+gives F@1% over the part eps resolves (:mod:`core2d.truth.resolvable`)."""
 
 
 def _f1(block) -> str:
@@ -19,10 +24,26 @@ def _f1(block) -> str:
 
 
 def _scored(entry: dict, surface: dict | None, what: str) -> str:
-    """``F@1% a over <what> (s% of the ground truth), r over its reachable part (q%)``."""
-    return (f"F@1% {_f1(surface)} over {what} ({percent(entry.get('slab_share'))} of the "
-            f"ground truth), {_f1((surface or {}).get('reachable'))} over its reachable part "
-            f"({percent(entry.get('reachable_share'))} of the ground truth)")
+    """``F@1% a over <what> (s% of the ground truth), r over its reachable part (q%)``, and
+    where openings narrower than eps take part of that (:data:`NARROW` of the ground
+    truth or more), ``, v over the part eps resolves (w%)``.
+
+    >>> e = {"slab_share": 0.8, "reachable_share": 0.7, "resolvable_share": 0.6}
+    >>> s = {"fscore": {"1%": 0.8}, "reachable": {"fscore": {"1%": 0.85}},
+    ...      "resolvable": {"fscore": {"1%": 0.97}}}
+    >>> _scored(e, s, "the slab")  # doctest: +NORMALIZE_WHITESPACE
+    'F@1% 0.800 over the slab (80% of the ground truth), 0.850 over its reachable part
+     (70% of the ground truth), 0.970 over the part eps resolves (60%: openings narrower
+     than eps left out)'
+    """
+    out = (f"F@1% {_f1(surface)} over {what} ({percent(entry.get('slab_share'))} of the "
+           f"ground truth), {_f1((surface or {}).get('reachable'))} over its reachable part "
+           f"({percent(entry.get('reachable_share'))} of the ground truth)")
+    reach, resolved = entry.get("reachable_share"), entry.get("resolvable_share")
+    if reach is not None and resolved is not None and reach - resolved >= NARROW:
+        out += (f", {_f1((surface or {}).get('resolvable'))} over the part eps resolves "
+                f"({percent(resolved)}: openings narrower than eps left out)")
+    return out
 
 
 def slicing_text(metrics: dict) -> str:

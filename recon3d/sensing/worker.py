@@ -27,6 +27,7 @@ from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
 from core2d.truth.nearest import polyline_segments, segment_distances
 from core2d.truth.reachability import reachable_samples
+from core2d.truth.resolvable import resolvable
 from recon3d.io.documents import slice_document
 from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
@@ -178,13 +179,15 @@ class WorkerState:
                             workspace, ContourTruth.empty())
         loops = [np.asarray(lp) for lp in cut.loops]
         samples = reachable_samples(loops, st.spacing)
+        samp, reach = samples
+        resolved = resolvable(loops, samp.points, st.eps)
         metrics = slice_metrics(loops, result, st.eps, tol=st.metric_tol, spacing=st.spacing,
-                                samples=samples)
+                                samples=samples, resolved=resolved)
         if sensor is not None:  # beside the noiseless ones: within eps/2 + 2 sigma
             metrics.update(sensor_metrics(loops, result, st.eps, sensor.noise,
-                                          spacing=st.spacing, samples=samples))
-        samp, reach = samples
+                                          spacing=st.spacing, samples=samples,
+                                          resolved=resolved))
         covered = reach & _covered(samp.points, result, st.metric_tol)
         truth = ContourTruth(samp.points, samp.lengths, reach, covered,
-                             on_holes(cut, samp.points))
+                             on_holes(cut, samp.points), resolved)
         return SliceRun(None, family, index, result, metrics, workspace, truth)

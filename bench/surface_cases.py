@@ -1,12 +1,12 @@
 """F@1% of single surfaces from ``bench_surface``'s cached sensing, with settings overridden.
 
-Each ``CASE:WHAT:N`` (``WHAT`` one of ``z``, ``x``, ``y``, ``z+x``; ``N`` slices per axis) is rebuilt
-with the default route and fusion, :class:`recon3d.surface.fusion.FusionSettings`,
+Each ``CASE:WHAT:N`` (``WHAT`` one of ``z``, ``x``, ``y``, ``z+x``; ``N`` slices per axis) is
+rebuilt with the default route and fusion, :class:`recon3d.surface.fusion.FusionSettings`,
 :class:`recon3d.surface.confidence.ConfidenceSettings` and
 :class:`recon3d.surface.caps.CapSettings` overridden by ``--blend``, ``--trust`` and
 ``--caps`` (JSON objects), and scored as ``bench_surface`` scores it (F@1% over the scored
-ground truth, over its reachable part and over the part eps resolves, 4 decimals). For measuring a fusion parameter on
-a few cases without the whole table.
+ground truth, over its reachable part and over the part eps resolves, 4 decimals). For
+measuring a fusion parameter on a few cases without the whole table.
 
 Run from the repository root::
 

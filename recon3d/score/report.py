@@ -35,6 +35,8 @@ def _scored(entry: dict, surface: dict | None, what: str) -> str:
     'F@1% 0.800 over the slab (80% of the ground truth), 0.850 over its reachable part
      (70% of the ground truth), 0.970 over the part eps resolves (60%: openings narrower
      than eps left out)'
+    >>> _scored({**e, "resolvable_share": 0.6995}, s, "the slab").endswith("(70% of the ground truth)")
+    True
     """
     out = (f"F@1% {_f1(surface)} over {what} ({percent(entry.get('slab_share'))} of the "
            f"ground truth), {_f1((surface or {}).get('reachable'))} over its reachable part "

@@ -6,9 +6,13 @@ S x eps, taxels T x eps, seeded per case), and scored against the true
 contour with :func:`core2d.truth.metrics.slice_metrics` (tolerance eps / 2)
 and :func:`core2d.truth.metrics.sensor_metrics` (eps / 2 + 2 S x eps). One
 row per group and level: slices, reachable coverage and precision at both
-tolerances (length weighted, and the worst slice at the sensor's), W3 lids
-and unsound ones at both tolerances, motions and their ratio to the noiseless run (total, and
-the worst slice), budget hits.
+tolerances (length weighted, and the worst slice at the sensor's), coverage at the
+sensor's tolerance over the part eps resolves (:mod:`core2d.truth.resolvable`: openings
+narrower than eps left out, which §3.1 closes by W2 by design), W3 lids and unsound ones at
+both tolerances, motions and their ratio to the noiseless run (total, and the worst slice),
+budget hits. Then, per case (a scene or mesh over its slices, an outline), which meet the
+issue's targets at each level: coverage within eps/2 + 2 sigma (over the reachable contour
+and over the part eps resolves), precision >= 0.98, motions <= 2 x noiseless, no budget hit.
 
     python -m bench.sensor_study                       # every group, every level
     python -m bench.sensor_study --groups scenes --levels 0.3:0.25 --jobs 2
@@ -43,16 +47,21 @@ def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
     from core2d import SensorModel, sense_slice
     from core2d.truth.metrics import sensor_metrics, slice_metrics
     from core2d.truth.reachability import reachable_samples
+    from core2d.truth.resolvable import resolvable
 
     samples = reachable_samples(loops, eps / 4)
+    resolved = resolvable(loops, samples[0].points, eps)
     rows = []
     for noise, taxel in ((0.0, 0.0),) + tuple(levels):
         sensor = SensorModel.of_eps(eps, noise, taxel, seed)
         res = sense_slice(contact, ws, eps, max_motions=budget, sensor=sensor)
-        m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples)
-        m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples))
+        m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples, resolved=resolved)
+        m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
+                                resolved=resolved))
         rows.append({"noise": noise, "taxel": taxel, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
+            "coverage_resolvable_sensor", "covered_resolvable_length_sensor",
+            "resolvable_length",
             "reachable_length", "precision", "precise_length", "precision_sensor",
             "precise_length_sensor", "detected_length", "w3_count", "w3_unsound_count",
             "w3_unsound_count_sensor", "motions", "budget_hit")}})
@@ -171,6 +180,8 @@ def summarise(rows) -> list[dict]:
             "coverage": total("covered_length", "reachable_length"),
             "coverage_sensor": total("covered_length_sensor", "reachable_length"),
             "cov_sensor_min": min(r["coverage_sensor"] for r in rs),
+            "resolved_sensor": total("covered_resolvable_length_sensor", "resolvable_length"),
+            "resolved_sensor_min": min(r["coverage_resolvable_sensor"] for r in rs),
             "precision": total("precise_length", "detected_length"),
             "precision_sensor": total("precise_length_sensor", "detected_length"),
             "prec_sensor_min": min(r["precision_sensor"] for r in rs),
@@ -188,17 +199,71 @@ def summarise(rows) -> list[dict]:
 def markdown(summary) -> str:
     """The summary as a markdown table."""
     rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
-            "(min) | precision eps/2 | precision eps/2+2σ (min) | W3 lids | unsound eps/2 | "
-            "unsound eps/2+2σ | motions "
-            "| × noiseless (max) | budget hits |", "|" + "---|" * 14]
+            "(min) | over the part eps resolves (min) | precision eps/2 | precision eps/2+2σ "
+            "(min) | W3 lids | unsound eps/2 | unsound eps/2+2σ | motions "
+            "| × noiseless (max) | budget hits |", "|" + "---|" * 15]
     for s in summary:
         rows.append(
             f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
             f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
+            f"{s['resolved_sensor']:.4f} ({s['resolved_sensor_min']:.4f}) | "
             f"{s['precision']:.4f} | {s['precision_sensor']:.4f} ({s['prec_sensor_min']:.4f}) | "
             f"{s['lids']} | {s['unsound']} | {s['unsound_sensor']} | {s['motions']} | {s['ratio']:.2f} "
             f"({s['ratio_max']:.2f}) | {s['budget']} |")
     return "\n".join(rows)
+
+
+def per_case(rows) -> list[dict]:
+    """One line per (group, case, noise, taxel): a scene or mesh over its slices (``name``
+    before ``:z``), an outline alone; coverage and precision length weighted, motions over
+    the noiseless run's."""
+    keyed = {}
+    for r in rows:
+        if "error" not in r:
+            keyed.setdefault((r["group"], r["name"].split(":")[0], r["noise"], r["taxel"]),
+                             []).append(r)
+    out = []
+    for (g, name, noise, taxel), rs in keyed.items():
+        def total(num, den):
+            d = sum(r[den] for r in rs)
+            return sum(r[num] for r in rs) / d if d > 0 else 1.0
+        base = sum(r["motions"] / r["ratio"] for r in rs)
+        out.append({"group": g, "case": name, "noise": noise, "taxel": taxel,
+                    "coverage_sensor": total("covered_length_sensor", "reachable_length"),
+                    "resolved_sensor": total("covered_resolvable_length_sensor",
+                                             "resolvable_length"),
+                    "precision_sensor": total("precise_length_sensor", "detected_length"),
+                    "ratio": sum(r["motions"] for r in rs) / max(base, 1),
+                    "budget": sum(bool(r["budget_hit"]) for r in rs)})
+    return out
+
+
+def verdicts(rows) -> str:
+    """Per sensor level with a coverage target: how many cases meet each target, and the
+    cases that miss one (their figures)."""
+    cases_ = per_case(rows)
+    lines = []
+    for noise, taxel in sorted({(c["noise"], c["taxel"]) for c in cases_}):
+        target = coverage_target(noise, taxel)
+        if target is None:
+            continue
+        cs = [c for c in cases_ if (c["noise"], c["taxel"]) == (noise, taxel)]
+        checks = {"coverage": lambda c: c["coverage_sensor"] >= target,
+                  "coverage over the part eps resolves": lambda c: c["resolved_sensor"] >= target,
+                  "precision >= 0.98": lambda c: c["precision_sensor"] >= 0.98,
+                  "motions <= 2 x noiseless": lambda c: c["ratio"] <= 2.0,
+                  "no budget hit": lambda c: c["budget"] == 0}
+        lines.append(f"sigma {noise:g} eps, taxel {taxel:g} eps (coverage target {target}), "
+                     f"{len(cs)} cases: " + "; ".join(
+                         f"{k} {sum(f(c) for c in cs)}" for k, f in checks.items()))
+        for c in sorted(cs, key=lambda c: (c["group"], c["case"])):
+            missed = [k for k, f in checks.items() if not f(c)]
+            if missed:
+                lines.append(f"  {c['group']} {c['case']}: coverage {c['coverage_sensor']:.4f}, "
+                             f"over the part eps resolves {c['resolved_sensor']:.4f}, precision "
+                             f"{c['precision_sensor']:.4f}, motions x{c['ratio']:.2f}, budget "
+                             f"hits {c['budget']} (misses: {', '.join(missed)})")
+    return "\n".join(lines)
 
 
 def coverage_target(noise: float, taxel: float) -> float | None:
@@ -321,6 +386,8 @@ def main(argv=None) -> int:
     if args.chart is not None:
         chart(summary, args.chart)
     print(markdown(summary))
+    print()
+    print(verdicts(rows))
     print(f"\n{len(jobs)} cases in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return 0
 

@@ -3,8 +3,8 @@
 Each ``CASE:WHAT:N`` (``WHAT`` one of ``z``, ``x``, ``y``, ``z+x``; ``N`` slices per axis) is
 rebuilt with the default route and fusion, :class:`recon3d.surface.fusion.FusionSettings`,
 :class:`recon3d.surface.confidence.ConfidenceSettings` and
-:class:`recon3d.surface.caps.CapSettings` overridden by ``--blend``, ``--trust`` and
-``--caps`` (JSON objects), and scored as ``bench_surface`` scores it (F@1% over the scored
+:class:`recon3d.surface.caps.CapSettings` and :class:`recon3d.surface.warp.WarpSettings`
+overridden by ``--blend``, ``--trust``, ``--caps`` and ``--warp`` (JSON objects), and scored as ``bench_surface`` scores it (F@1% over the scored
 ground truth, over its reachable part and over the part eps resolves, 4 decimals). For
 measuring a fusion parameter on a few cases without the whole table.
 
@@ -26,6 +26,7 @@ from recon3d.surface import reconstruct
 from recon3d.surface.caps import CapSettings
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.fusion import FusionSettings
+from recon3d.surface.warp import WarpSettings
 
 
 def run_of(name: str, what: str, slices: int, cache: Path) -> MeshRun:
@@ -46,7 +47,10 @@ def main(argv=None) -> int:
     ap.add_argument("--trust", default="{}", help="ConfidenceSettings overrides (JSON)")
     ap.add_argument("--caps", default="{}", help="CapSettings overrides (JSON), e.g. "
                     "'{\"enabled\": false}'")
+    ap.add_argument("--warp", default="{}", help="WarpSettings overrides (JSON), e.g. "
+                    "'{\"bend\": false}'")
     args = ap.parse_args(argv)
+    warp = WarpSettings(**json.loads(args.warp))
     blend = FusionSettings(**json.loads(args.blend))
     trust = ConfidenceSettings(**json.loads(args.trust))
     caps = CapSettings(**json.loads(args.caps))
@@ -54,7 +58,8 @@ def main(argv=None) -> int:
         name, what, n = spec.rsplit(":", 2)
         t0 = time.perf_counter()
         run = run_of(name, what, int(n), args.cache)
-        s = scores(run, reconstruct(run, trust=trust, blend=blend, caps=caps).surface)
+        s = scores(run, reconstruct(run, trust=trust, blend=blend, caps=caps,
+                                       warp=warp).surface)
         print(f"{name:26s} {what:4s} {n:>3s}  F@1% {s['f1']:.4f}  reachable {s['f1r']:.4f}"
               f"  resolvable {s['f1v']:.4f}  {time.perf_counter() - t0:.0f} s", flush=True)
     return 0

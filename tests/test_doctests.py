@@ -32,6 +32,7 @@ MODULES = [
     "core2d.truth.reachability",
     "core2d.truth.metrics",
     "core2d.truth.resolvable",
+    "recon3d.surface.warp",
     "recon3d.numerics",
     "recon3d.io.documents",
     "recon3d.viz.plot",

@@ -13,7 +13,9 @@ normal by one of two routes (:data:`ROUTES`):
   wall, a ring stays a ring; space a slice only closed with unknown chords or bridges,
   where the neighbour disagrees, ends at that slice (:mod:`recon3d.surface.caps`), also
   when a run of slices closed it (:mod:`recon3d.surface.runs`); a lid whose walls stand
-  still in the neighbouring gaps is a step at mid-gap (:mod:`recon3d.surface.steps`);
+  still in the neighbouring gaps is a step at mid-gap (:mod:`recon3d.surface.steps`); a
+  boundary follows a curve through four slices, bent by the neighbouring gaps' moves
+  (:func:`recon3d.surface.warp.bend_shift`);
 * ``'linear'`` -- plain shape-based interpolation (Herman et al. 1992): a loop that keeps
   its shape makes a straight prism, a loop that vanishes tapers off at roughly 45 degrees,
   loops that split or merge do so half-way.
@@ -37,7 +39,7 @@ from recon3d.surface.runs import run_caps
 from recon3d.surface.steps import gap_steps
 from recon3d.surface.confidence import (ConfidenceSettings, agreement, between_confidence, cone,
                                         in_plane_share, seen_map)
-from recon3d.surface.warp import WarpSettings, warp_gap
+from recon3d.surface.warp import WarpSettings, bend_shift, gap_displacement, warp_blend
 
 __all__ = ["ROUTES", "FamilyField", "FamilyGrid", "family_grid", "slice_sdf", "family_volume", "grid_step"]
 
@@ -237,19 +239,29 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
             f = own_caps(f, capped, grid.step)
         if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
             seen = _neighbours_say(seen, f, f0, drops)  # showed empty (solid), they say
+    held, moves = [None] * (len(f) - 1), [None] * (len(f) - 1)
+    for i in range(len(f) - 1) if warped else ():  # every gap's move, then the blends
+        t, cap = clip[i], capped[i]
+        fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
+        held[i] = gap_steps(fa, fb, np.clip(f[i - 1], -t, t) if i > 0 else None,
+                            np.clip(f[i + 2], -t, t) if i + 2 < len(f) else None,
+                            grid.step, caps.step_tol) if caps.steps else None
+        skip = cap.skip() if cap is not None else (None, None)
+        if held[i] is not None:
+            still = held[i].skip()
+            skip = tuple(still if s is None else s | still for s in skip)
+        moves[i] = gap_displacement(fa, fb, grid, float(gaps[i]), warp, *skip)
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
         gap, t, cap = float(gaps[i]), clip[i], capped[i]
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
         if warped:
-            steps = gap_steps(fa, fb, np.clip(f[i - 1], -t, t) if i > 0 else None,
-                              np.clip(f[i + 2], -t, t) if i + 2 < len(f) else None,
-                              grid.step, caps.step_tol) if caps.steps else None
-            skip = cap.skip() if cap is not None else (None, None)
-            if steps is not None:
-                held = steps.skip()
-                skip = tuple(held if s is None else s | held for s in skip)
-            val, va, vb, move = warp_gap(fa, fb, grid, gap, w, warp, *skip)
+            steps, shift = held[i], None
+            if warp.bend:  # the neighbouring gaps' moves, as if their gaps were this one's
+                before = moves[i - 1] * (gap / gaps[i - 1]) if i > 0 else None
+                after = moves[i + 1] * (gap / gaps[i + 1]) if i + 2 < len(f) else None
+                shift = bend_shift(moves[i], before, after, w, warp.bend_cap * gap)
+            val, va, vb, move = warp_blend(fa, fb, grid, w, moves[i], shift)
             if steps is not None:  # a lid no neighbouring gap continues: a step at mid-gap
                 val = steps.apply(val, fa, fb, w3)
             if cap is not None:

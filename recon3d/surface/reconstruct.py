@@ -18,6 +18,7 @@ from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import grid_step
 from recon3d.surface.fusion import FusionSettings
 from recon3d.surface.solid import FamilySolid, family_solid, fuse
+from recon3d.surface.warp import WarpSettings
 
 __all__ = ["Reconstruction", "reconstruct"]
 
@@ -47,7 +48,8 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
                 trust: ConfidenceSettings = ConfidenceSettings(),
                 blend: FusionSettings = FusionSettings(),
                 caps: CapSettings = CapSettings(),
-                regions: list[list[SliceRegion]] | None = None) -> Reconstruction:
+                regions: list[list[SliceRegion]] | None = None,
+                warp: WarpSettings = WarpSettings()) -> Reconstruction:
     """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`.
 
     Parameters
@@ -63,6 +65,7 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     regions : list of list of SliceRegion, optional -- every slice's
         :func:`~recon3d.surface.closure.slice_region` (snap ``2 * run.tol``), per family,
         already computed (e.g. as the slices were sensed); None: computed here.
+    warp : WarpSettings -- the aligned blend (:mod:`recon3d.surface.warp`).
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
@@ -78,7 +81,7 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
             notes.append(f"family {fam.label}: a surface needs at least 2 slices")
             continue
         solid = family_solid(regs, [s.slice.plane for s in fam.slices], step, route, keep,
-                             trust, caps)
+                             trust, caps, warp)
         if solid is None:
             notes.append(f"family {fam.label}: nothing sensed, no surface")
         solids.append(solid)

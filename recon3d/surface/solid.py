@@ -37,6 +37,7 @@ import slicer
 from recon3d.surface.caps import CapSettings
 from recon3d.surface.closure import KIND_LABEL, SliceRegion, sample_pieces
 from recon3d.surface.confidence import ConfidenceSettings
+from recon3d.surface.warp import WarpSettings
 from recon3d.surface.field import ROUTES, FamilyField, family_grid, family_volume
 from recon3d.surface.fusion import FusionSettings, empty_surface, fuse_weighted, mesh_of
 from recon3d.viz import libs
@@ -113,7 +114,8 @@ def _face_labels(points, faces, grid, regions) -> np.ndarray:
 def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
                  step: float, route: str = "warp", keep_field: bool = False,
                  trust: ConfidenceSettings = ConfidenceSettings(),
-                 caps: CapSettings = CapSettings()) -> FamilySolid | None:
+                 caps: CapSettings = CapSettings(),
+                 warp: WarpSettings = WarpSettings()) -> FamilySolid | None:
     """Level set of one family's field (see module doc).
 
     Parameters
@@ -126,6 +128,7 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
         fusion of several families).
     trust : ConfidenceSettings -- parameters of that confidence.
     caps : CapSettings -- unsensed space ends at its slice (:mod:`recon3d.surface.caps`).
+    warp : WarpSettings -- the aligned blend (:mod:`recon3d.surface.warp`).
 
     Returns
     -------
@@ -139,8 +142,8 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     regions = [regions[i] for i in order]
     heights = np.array([p.offset for p in planes])
     grid = family_grid(regions, heights, step)
-    vol, conf = family_volume(regions, grid, route, confidence=keep_field, trust=trust,
-                              caps=caps)
+    vol, conf = family_volume(regions, grid, route, confidence=keep_field, warp=warp,
+                              trust=trust, caps=caps)
     img = pv.ImageData(dimensions=(grid.shape[0], grid.shape[1], grid.layers),
                        spacing=(step, step, 1.0), origin=(grid.x0, grid.y0, 0.0))
     img.point_data["f"] = vol.ravel()

@@ -19,6 +19,14 @@ aligns the two slices first:
 
 A thin tilted wall then moves as a wall, a ring stays a ring. On a slice layer the field is
 the slice's own 2D signed distance, so labels and slice curves are unchanged.
+
+5. **bend** (:func:`bend_shift`) -- with the moves of the neighbouring gaps, a boundary point
+   follows a Catmull-Rom curve through four slices instead of the straight line between two:
+   both samples are shifted by ``t (1 - t) / 2 ((1 - t)(d_{i-1} - d_i) - t (d_{i+1} - d_i))``
+   (``t`` = ``w``; at an end gap the missing move is the parabola's through three slices,
+   ``d_{-1} = 2 d_0 - d_1``). A curved wall that grazes the planes (a cup's side between two
+   planes that cut it near its widest) bulges as it does instead of running as a chord; where
+   the moves agree (a straight tilted wall, a prism) the shift is 0.
 """
 from __future__ import annotations
 
@@ -29,7 +37,7 @@ from scipy.ndimage import gaussian_filter, map_coordinates
 from scipy.spatial import cKDTree
 
 __all__ = ["WarpSettings", "boundary_samples", "match_boundaries", "displacement_field",
-           "sample_field", "warp_gap"]
+           "sample_field", "gap_displacement", "bend_shift", "warp_blend", "warp_gap"]
 
 
 @dataclass(frozen=True)
@@ -40,12 +48,16 @@ class WarpSettings:
     sigma : float -- spread of the displacement field, times the gap (>= 2 grid steps).
     min_cos : float -- least cosine between the normals of matched boundary samples.
     fade : float -- weight below which the displacement fades to 0 (no pair near).
+    bend : bool -- follow the neighbouring gaps' moves (step 5 of the module doc).
+    bend_cap : float -- largest bend, times the gap.
     """
 
     reach: float = 4.0
     sigma: float = 0.5
     min_cos: float = 0.5
     fade: float = 0.05
+    bend: bool = True
+    bend_cap: float = 0.5
 
 
 def boundary_samples(f: np.ndarray, x0: float, y0: float, step: float
@@ -152,11 +164,86 @@ def _kept(p, n, grid, skip):
     return p[keep], n[keep]
 
 
+def gap_displacement(fa: np.ndarray, fb: np.ndarray, grid, gap: float,
+                     settings: WarpSettings = WarpSettings(), skip_a: np.ndarray | None = None,
+                     skip_b: np.ndarray | None = None) -> np.ndarray:
+    """(ny, nx, 2) move from slice ``i`` to ``i + 1`` (module doc, steps 1-3).
+
+    fa, fb : (ny, nx) float32 -- the two slices' fields, truncated.
+    skip_a, skip_b : (ny, nx) bool, optional -- nodes whose boundary samples are not matched
+        (:meth:`recon3d.surface.caps.GapCaps.skip`).
+    """
+    pa, na = _kept(*boundary_samples(fa, grid.x0, grid.y0, grid.step), grid, skip_a)
+    pb, nb = _kept(*boundary_samples(fb, grid.x0, grid.y0, grid.step), grid, skip_b)
+    reach = settings.reach * gap
+    ia, ib = match_boundaries(pa, na, pb, nb, reach, gap, settings.min_cos)
+    jb, ja = match_boundaries(pb, nb, pa, na, reach, gap, settings.min_cos)
+    src = np.concatenate([pa[ia], pa[ja]])
+    dst = np.concatenate([pb[ib], pb[jb]])
+    return displacement_field(src, dst, grid, max(2 * grid.step, settings.sigma * gap),
+                              settings.fade)
+
+
+def bend_shift(d: np.ndarray, before: np.ndarray | None, after: np.ndarray | None,
+               w: np.ndarray, cap: float) -> np.ndarray | None:
+    """(k, ny, nx, 2) shift of the boundary at fractions ``w`` of a gap (module doc, step 5).
+
+    Parameters
+    ----------
+    d : (ny, nx, 2) float -- this gap's move.
+    before, after : (ny, nx, 2) float or None -- the neighbouring gaps' moves, scaled to this
+        gap's length (None: an end; both None: no bend).
+    w : (k,) float -- fractions of the gap.
+    cap : float -- largest shift length (frame units).
+
+    Examples
+    --------
+    >>> d = np.ones((1, 1, 2))
+    >>> bend_shift(d, d, d, np.array([0.0, 0.5]), 1.0).ravel().tolist()  # moves agree: none
+    [0.0, 0.0, 0.0, 0.0]
+    >>> # at rest, then 1 per gap: the parabola through 0, 0, 1 (3 after) is 3/8 at mid-gap
+    >>> float(bend_shift(d, 0 * d, None, np.array([0.5]), 1.0)[0, 0, 0, 0])
+    -0.125
+    """
+    if before is None and after is None:
+        return None
+    before = 2 * d - after if before is None else before
+    after = 2 * d - before if after is None else after
+    t = np.asarray(w, dtype=np.float64)[:, None, None, None]
+    shift = 0.5 * t * (1 - t) * ((1 - t) * (before - d)[None] - t * (after - d)[None])
+    size = np.linalg.norm(shift, axis=-1, keepdims=True)
+    return shift * np.minimum(1.0, cap / np.maximum(size, 1e-300))
+
+
+def warp_blend(fa: np.ndarray, fb: np.ndarray, grid, w: np.ndarray, d: np.ndarray,
+               shift: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The warped blend at fractions ``w`` (module doc, step 4), bent by ``shift``
+    ((k, ny, nx, 2) from :func:`bend_shift`, or None).
+
+    Returns
+    -------
+    vol : (k, ny, nx) float32 -- the warped blend.
+    va, vb : (k, ny, nx) float32 -- the two slices' fields sampled along the move.
+    move : (ny, nx) float -- length of the displacement.
+    """
+    nx, ny = grid.shape
+    nodes = grid.nodes().reshape(ny, nx, 2)[None]
+    ww = np.asarray(w, dtype=np.float64)[:, None, None, None]
+    if shift is not None:
+        nodes = nodes - shift
+    va = sample_field(fa, grid, nodes - ww * d[None]).astype(np.float32)
+    vb = sample_field(fb, grid, nodes + (1 - ww) * d[None]).astype(np.float32)
+    wf = ww[..., 0].astype(np.float32)
+    return (1 - wf) * va + wf * vb, va, vb, np.linalg.norm(d, axis=2)
+
+
 def warp_gap(fa: np.ndarray, fb: np.ndarray, grid, gap: float, w: np.ndarray,
              settings: WarpSettings = WarpSettings(), skip_a: np.ndarray | None = None,
              skip_b: np.ndarray | None = None
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The aligned blend of two neighbouring slice fields (module doc, steps 1-4).
+    """The aligned blend of two neighbouring slice fields (module doc, steps 1-4; no bend:
+    that needs the neighbouring gaps, :func:`recon3d.surface.field.family_volume`).
 
     Parameters
     ----------
@@ -169,23 +256,7 @@ def warp_gap(fa: np.ndarray, fb: np.ndarray, grid, gap: float, w: np.ndarray,
 
     Returns
     -------
-    vol : (k, ny, nx) float32 -- the warped blend.
-    va, vb : (k, ny, nx) float32 -- the two slices' fields sampled along the move.
-    move : (ny, nx) float -- length of the displacement.
+    vol, va, vb, move -- as :func:`warp_blend`.
     """
-    pa, na = _kept(*boundary_samples(fa, grid.x0, grid.y0, grid.step), grid, skip_a)
-    pb, nb = _kept(*boundary_samples(fb, grid.x0, grid.y0, grid.step), grid, skip_b)
-    reach = settings.reach * gap
-    ia, ib = match_boundaries(pa, na, pb, nb, reach, gap, settings.min_cos)
-    jb, ja = match_boundaries(pb, nb, pa, na, reach, gap, settings.min_cos)
-    src = np.concatenate([pa[ia], pa[ja]])
-    dst = np.concatenate([pb[ib], pb[jb]])
-    d = displacement_field(src, dst, grid, max(2 * grid.step, settings.sigma * gap),
-                           settings.fade)
-    nx, ny = grid.shape
-    nodes = grid.nodes().reshape(ny, nx, 2)
-    ww = np.asarray(w, dtype=np.float64)[:, None, None, None]
-    va = sample_field(fa, grid, nodes[None] - ww * d[None]).astype(np.float32)
-    vb = sample_field(fb, grid, nodes[None] + (1 - ww) * d[None]).astype(np.float32)
-    wf = ww[..., 0].astype(np.float32)
-    return (1 - wf) * va + wf * vb, va, vb, np.linalg.norm(d, axis=2)
+    d = gap_displacement(fa, fb, grid, gap, settings, skip_a, skip_b)
+    return warp_blend(fa, fb, grid, w, d)

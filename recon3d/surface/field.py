@@ -28,7 +28,7 @@ last layers are padding (outside) so that the zero level set is closed.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -250,7 +250,8 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
         if held[i] is not None:
             still = held[i].skip()
             skip = tuple(still if s is None else s | still for s in skip)
-        moves[i] = gap_displacement(fa, fb, grid, float(gaps[i]), warp, *skip)
+        end = warp if 0 < i < len(f) - 2 else replace(warp, reach=warp.end_reach)
+        moves[i] = gap_displacement(fa, fb, grid, float(gaps[i]), end, *skip)
     for i in range(len(f) - 1):
         a = grid.slice_layer(i)
         gap, t, cap = float(gaps[i]), clip[i], capped[i]

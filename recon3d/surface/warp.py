@@ -48,6 +48,7 @@ class WarpSettings:
     sigma : float -- spread of the displacement field, times the gap (>= 2 grid steps).
     min_cos : float -- least cosine between the normals of matched boundary samples.
     fade : float -- weight below which the displacement fades to 0 (no pair near).
+    end_reach : float -- ``reach`` in the first and last gap.
     bend : bool -- follow the neighbouring gaps' moves (step 5 of the module doc).
     bend_cap : float -- largest bend, times the gap.
     """
@@ -56,6 +57,7 @@ class WarpSettings:
     sigma: float = 0.5
     min_cos: float = 0.5
     fade: float = 0.05
+    end_reach: float = 12.0
     bend: bool = True
     bend_cap: float = 0.5
 

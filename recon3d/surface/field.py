@@ -261,7 +261,7 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
             if warp.bend:  # the neighbouring gaps' moves, as if their gaps were this one's
                 before = moves[i - 1] * (gap / gaps[i - 1]) if i > 0 else None
                 after = moves[i + 1] * (gap / gaps[i + 1]) if i + 2 < len(f) else None
-                shift = bend_shift(moves[i], before, after, w, warp.bend_cap * gap)
+                shift = bend_shift(moves[i], before, after, w, warp.bend_cap * gap, grid)
             val, va, vb, move = warp_blend(fa, fb, grid, w, moves[i], shift)
             if steps is not None:  # a lid no neighbouring gap continues: a step at mid-gap
                 val = steps.apply(val, fa, fb, w3)
@@ -285,6 +285,8 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
     vol[last] = f[-1]
     if confidence:
         conf[last] = seen[-1]
+    for edge in (np.s_[:, 0], np.s_[:, -1], np.s_[:, :, 0], np.s_[:, :, -1]):
+        vol[edge] = np.minimum(vol[edge], -grid.step)  # closed: a bend can reach the margin
     small = np.abs(vol) < _MIN_VALUE * grid.step  # interpolation can cross 0 exactly
     vol[small] = np.copysign(_MIN_VALUE * grid.step, vol[small])
     if confidence and trust.facing > 0:  # a family knows the walls its planes cut across

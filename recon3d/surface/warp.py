@@ -24,7 +24,10 @@ the slice's own 2D signed distance, so labels and slice curves are unchanged.
    follows a Catmull-Rom curve through four slices instead of the straight line between two:
    both samples are shifted by ``t (1 - t) / 2 ((1 - t)(d_{i-1} - d_i) - t (d_{i+1} - d_i))``
    (``t`` = ``w``; at an end gap the missing move is the parabola's through three slices,
-   ``d_{-1} = 2 d_0 - d_1``). A curved wall that grazes the planes (a cup's side between two
+   ``d_{-1} = 2 d_0 - d_1``). The neighbouring moves are read where the boundary point was
+   and will be: ``d_{i-1}`` half a move before slice ``i``, ``d_{i+1}`` half a move after
+   slice ``i + 1`` (a blob that moves farther than its size per gap takes its own moves,
+   not the empty space it left). A curved wall that grazes the planes (a cup's side between two
    planes that cut it near its widest) bulges as it does instead of running as a chord; where
    the moves agree (a straight tilted wall, a prism) the shift is 0.
 """
@@ -186,8 +189,13 @@ def gap_displacement(fa: np.ndarray, fb: np.ndarray, grid, gap: float,
                               settings.fade)
 
 
+def _moved(field: np.ndarray, grid, xy: np.ndarray) -> np.ndarray:
+    """Bilinear samples of a (ny, nx, 2) move field at frame points ``xy`` (..., 2)."""
+    return np.stack([sample_field(field[..., c], grid, xy) for c in (0, 1)], axis=-1)
+
+
 def bend_shift(d: np.ndarray, before: np.ndarray | None, after: np.ndarray | None,
-               w: np.ndarray, cap: float) -> np.ndarray | None:
+               w: np.ndarray, cap: float, grid=None) -> np.ndarray | None:
     """(k, ny, nx, 2) shift of the boundary at fractions ``w`` of a gap (module doc, step 5).
 
     Parameters
@@ -197,6 +205,8 @@ def bend_shift(d: np.ndarray, before: np.ndarray | None, after: np.ndarray | Non
         gap's length (None: an end; both None: no bend).
     w : (k,) float -- fractions of the gap.
     cap : float -- largest shift length (frame units).
+    grid : FamilyGrid, optional -- read ``before`` and ``after`` along the move (module doc);
+        None: at the same node.
 
     Examples
     --------
@@ -209,10 +219,18 @@ def bend_shift(d: np.ndarray, before: np.ndarray | None, after: np.ndarray | Non
     """
     if before is None and after is None:
         return None
-    before = 2 * d - after if before is None else before
-    after = 2 * d - before if after is None else after
     t = np.asarray(w, dtype=np.float64)[:, None, None, None]
-    shift = 0.5 * t * (1 - t) * ((1 - t) * (before - d)[None] - t * (after - d)[None])
+    if grid is not None:  # where the boundary point was half a move before, and will be after
+        nx, ny = grid.shape
+        nodes = grid.nodes().reshape(ny, nx, 2)[None]
+        before = None if before is None else _moved(before, grid, nodes - (t + 0.5) * d[None])
+        after = None if after is None else _moved(after, grid, nodes + (1.5 - t) * d[None])
+    else:
+        before = None if before is None else before[None]
+        after = None if after is None else after[None]
+    before = 2 * d[None] - after if before is None else before
+    after = 2 * d[None] - before if after is None else after
+    shift = 0.5 * t * (1 - t) * ((1 - t) * (before - d[None]) - t * (after - d[None]))
     size = np.linalg.norm(shift, axis=-1, keepdims=True)
     return shift * np.minimum(1.0, cap / np.maximum(size, 1e-300))
 

@@ -148,3 +148,34 @@ def test_the_picture_headline_wraps_long_lines_and_drops_no_word():
     assert max(len(r) for r in rows) <= WIDTH
     assert " ".join(rows).split() == " ".join(lines).split()
     assert len(rows) > len(lines) and rows[-1].startswith("      ")  # continued, indented
+
+
+@pytest.mark.parametrize("count", [4, 8, 9, 14, 30])
+def test_the_picture_headline_stays_inside_its_panel(count):
+    """However many rows the headline has, its first row is drawn inside the headline panel
+    (the picture's bottom fifth): a long list of unknown chords shrinks the type instead of
+    pushing the run's name out of the picture (it did with 9 rows)."""
+    import os
+    from types import SimpleNamespace
+
+    import pyvista as pv
+
+    from recon3d.viz import plot
+
+    pv.OFF_SCREEN = True
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    lines = ["case: slices z x16"] + [f"  z#{k} at (1.0, 2.0, 3.0), length 0.5: " + "word " * 20
+                                      for k in range(count - 1)]
+    blocks = SimpleNamespace(field_data={"headline": lines})
+    p = pv.Plotter(shape=(2, 2), groups=[(1, np.s_[:])], row_weights=[4, 1], off_screen=True,
+                   window_size=[1600, 800], border=False)
+    p.subplot(1, 0)
+    plot._headline(p, blocks, "")
+    p.render()
+    ren = p.renderer
+    actor = [a for a in ren.GetViewProps() if a.IsA("vtkTextActor")][-1]
+    box = [0.0] * 4
+    actor.GetBoundingBox(ren, box)  # display pixels: xmin, xmax, ymin, ymax
+    top = ren.GetViewport()[3] * p.window_size[1]
+    p.close()
+    assert 0 <= box[2] and box[3] <= top + 1, (box, top)

@@ -104,7 +104,7 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
              f"{number(run.seconds, '.1f')} s sensing"]
     reach, resolved = t.get("reachable_length") or 0.0, t.get("resolvable_length") or 0.0
     narrow = (f" ({number(t.get('coverage_resolvable'), '.4f')} of the part eps resolves: "
-              f"{percent(1.0 - resolved / reach)} of the reachable contour lies in openings "
+              f"{percent(1.0 - resolved / reach, 1)} of the reachable contour lies in openings "
               f"narrower than eps, §3.1)") if reach > 0 and resolved < reach * (1 - 1e-3) else ""
     lines.append(f"  2D  reachable coverage {number(t.get('coverage'), '.4f')}{narrow}  precision "
                  f"{number(t.get('precision'), '.4f')}  W3 soundness "

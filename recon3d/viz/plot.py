@@ -42,8 +42,9 @@ DISTANCE_COLORS = ("#1a9850", "#91cf60", "#fee08b", "#fc8d59", "#d73027", "#a500
 DISTANCE_MAX, DISTANCE_ABOVE = 3.0, "#40004b"
 WIDTH = 140
 """Characters of a headline line in the picture (longer lines wrap, indented)."""
-HEADLINE_ROWS = 10
-"""Rows the headline panel holds at font size 9; more rows shrink the font to fit."""
+HEADLINE_ROWS = 8
+"""Rows the headline panel holds at font size 9; more rows shrink the font to fit (as many
+more rows as the type is smaller, down to size 4)."""
 
 
 def has_display() -> bool:
@@ -241,11 +242,17 @@ def headline_rows(lines, width: int = WIDTH) -> list[str]:
 def _headline(p, blocks, title):
     lines = [str(s) for s in blocks.field_data["headline"]] \
         if "headline" in blocks.field_data.keys() else []
-    size = 9
-    rows = headline_rows(lines) or [title]
-    if len(rows) > HEADLINE_ROWS:  # smaller type, wider rows: everything stays in the panel
-        size = max(5, int(9 * HEADLINE_ROWS / len(rows)))
-        rows = headline_rows(lines, int(WIDTH * 9 / size))
+    size, rows = 9, headline_rows(lines) or [title]
+    def room(size):  # rows the panel holds at that size (smaller type: a row's margin less)
+        return int(HEADLINE_ROWS * 9 / size) - (size < 9)
+
+    while size > 4 and len(rows) > room(size):  # smaller type, wider rows:
+        size -= 1                               # everything stays in the panel
+        rows = headline_rows(lines, int(WIDTH * 9 / size)) or [title]
+    fits = room(size)
+    if len(rows) > fits:  # even the smallest type cannot hold it: say what is left out
+        rows = rows[:fits - 1] + [f"... and {len(rows) - fits + 1} more rows: see the summary "
+                                  "and metrics.json"]
     p.add_text("\n".join(rows), position=(0.01, 0.04), viewport=True, font_size=size,
                color="black", font="courier")
 

@@ -5,6 +5,6 @@ Nothing in recon3d imports this package (``recon3d/__main__.py`` and the
 :mod:`.batch`, :mod:`.bench`) call the rooms, and the error they report
 as one line is :class:`recon3d.InputError`, raised outside.
 """
-from recon3d.cli.main import main
+from recon3d.cli.main import entry, main
 
-__all__ = ["main"]
+__all__ = ["main", "entry"]

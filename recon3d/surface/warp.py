@@ -60,7 +60,7 @@ class WarpSettings:
     sigma: float = 0.5
     min_cos: float = 0.5
     fade: float = 0.05
-    end_reach: float = 16.0
+    end_reach: float = 12.0
     bend: bool = True
     bend_cap: float = 0.5
 

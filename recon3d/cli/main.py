@@ -24,7 +24,7 @@ from recon3d.cli import batch, bench, figure, run, show
 from recon3d.cli.printing import warn
 from recon3d.cli.signals import closed_stdout, exit_status, interrupted_line, interrupts
 
-__all__ = ["main", "entry", "build_parser"]
+__all__ = ["main", "entry", "end", "build_parser"]
 
 _NEGATIVE_AXIS = re.compile(r"^-[^-]")
 
@@ -112,8 +112,13 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def entry() -> None:
-    """The ``recon3d`` console script and ``python -m recon3d``: :func:`main`, then the
-    process ends without the interpreter's teardown.
+    """The ``recon3d`` console script and ``python -m recon3d``: :func:`main`, then
+    :func:`end`."""
+    end(main())
+
+
+def end(status: int) -> None:
+    """End the process with ``status`` without the interpreter's teardown.
 
     By the time :func:`main` returns every file is written and closed and every child
     process joined; what is left is freeing the run's meshes, VTK objects and numba's
@@ -123,7 +128,6 @@ def entry() -> None:
     module teardown is skipped. Code that calls :func:`main` itself (the tests) keeps the
     ordinary exit.
     """
-    status = main()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

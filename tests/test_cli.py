@@ -207,3 +207,24 @@ def test_run_on_a_mesh_file_reports_it(tmp_path):
     assert "faces" in r.stderr  # the one-line mesh report (units / scale)
     assert json.loads((tmp_path / "o" / "sensing.json").read_text())["mesh"] == "block.stl"
     assert "wrote" in r.stdout
+
+
+@pytest.mark.parametrize("ending, teardown", [("end(3)", False), ("sys.exit(3)", True)])
+def test_the_command_ends_without_teardown_but_with_its_exit_handlers(ending, teardown):
+    """``recon3d`` ends through ``recon3d.cli.main.end``: buffered output is flushed and the
+    exit handlers run (child processes, logging, temporary directories), the interpreter's
+    module teardown (a run's meshes, VTK, numba: ~1 s) is skipped; sys.exit, the control,
+    tears down."""
+    code = ("import atexit, sys\n"
+            "from recon3d.cli.main import end\n"
+            "class Held:\n"
+            "    def __del__(self):\n"
+            "        print('torn down', flush=True)\n"
+            "held = Held()\n"
+            "atexit.register(lambda: print('handler ran', flush=True))\n"
+            "print('buffered', end='')\n"
+            f"{ending}\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 3
+    assert r.stdout.startswith("buffered") and "handler ran" in r.stdout
+    assert ("torn down" in r.stdout) is teardown

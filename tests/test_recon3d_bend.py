@@ -70,3 +70,39 @@ def test_a_cone_is_not_bent():
     e_bent, e_straight = _errors(bent, err), _errors(straight, err)
     assert np.mean(e_bent) == pytest.approx(np.mean(e_straight), abs=0.02 * STEP)
     assert np.percentile(e_bent, 99) < STEP
+
+
+def test_an_end_gap_aligns_a_part_the_end_slice_barely_cuts():
+    """A block whose foot is a shallow ramp (slope 1 : 10 along x): the first plane cuts the
+    ramp far out, the second near its toe, 10 gaps apart. The first and last gaps align
+    over ``end_reach`` (12) gaps, so the boundaries are matched and most of the ramp between
+    the two planes is a ramp; with the middle gaps' reach (4 gaps) they go unmatched and the
+    blend puts a flat step half-way (measured: the surface's distance to the true solid in
+    that gap, median; the move spreads only about half a gap around its midpoint, so the
+    ramp's far ends stay off either way)."""
+    import manifold3d
+
+    from recon3d.surface.solid import family_solid, fuse
+
+    xz = np.array([[24.0, 0.0], [40.0, 0.0], [40.0, 20.0], [0.0, 20.0], [0.0, 2.4]])
+    prism = manifold3d.Manifold.extrude(manifold3d.CrossSection([xz]), 10.0)  # along z
+    m = prism.rotate([90.0, 0.0, 0.0]).to_mesh()  # the profile's y up -> z up, extruded along y
+    mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts))
+    cuts = slicer.slice_mesh(mesh, axis="z", count=16)
+    regions = [slice_region([np.vstack([lp, lp[:1]]) for lp in c.loops], [], [], [], 1e-9)
+               for c in cuts]
+    planes = [c.plane for c in cuts]
+    z0, z1 = planes[0].offset, planes[1].offset
+    assert z1 < 2.4 < planes[2].offset  # the ramp's toe lies in the second gap
+
+    def far_in_first_gap(warp):
+        surf = fuse([family_solid(regions, planes, STEP, warp=warp)], mesh.bounds)
+        keep = surf.face_attributes["label"] != 5
+        pts, _ = trimesh.sample.sample_surface(surf.submesh([np.flatnonzero(keep)],
+                                                            append=True), 20000, seed=2)
+        gap = pts[(pts[:, 2] > z0 + 0.05) & (pts[:, 2] < z1 - 0.05)]
+        return np.abs(trimesh.proximity.signed_distance(mesh, gap)), z1 - z0
+
+    near, g = far_in_first_gap(WarpSettings())
+    short, _ = far_in_first_gap(WarpSettings(end_reach=4.0))
+    assert np.median(near) < 0.6 * np.median(short) and np.median(short) > 0.08 * g

@@ -271,8 +271,9 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     notes = list(notes)
     # each slice's filled region is closed in this process as the slice comes back (it only
     # waits for the workers); the reconstruction takes them as they are
-    regions = RegionsAsSensed(None if config.slices == "auto"
-                              else 2.0 * resolve(config, diagonal(mesh)).tol)
+    plan = resolve(config, diagonal(mesh))
+    regions = RegionsAsSensed(None if config.slices == "auto" else 2.0 * plan.tol,
+                              config.noise * plan.eps)
 
     def sensed_one(srun: SliceRun) -> None:
         regions.add(srun)

@@ -82,3 +82,40 @@ def test_sample_pieces_spacing_and_owner():
     assert owner.tolist().count(1) == 2 and set(owner.tolist()) == {0, 1}
     d = np.hypot(*np.diff(pts[owner == 0], axis=0).T)
     assert d.max() <= 0.5 + 1e-12
+
+
+def _comb_slice():
+    """A block 0..20 x 0..10 with two slots 2 wide (x 4..6 and 12..14, floors at y = 2),
+    traced all round, and an unknown chord from the first slot's floor across the tooth
+    between them to the second slot's wall (as a split of an area that ended unknown lays
+    it). The probe went down both slots (postures from above to the floors)."""
+    outline = _chain([[0, 0], [20, 0], [20, 10], [14, 10], [14, 2], [12, 2], [12, 10],
+                      [6, 10], [6, 2], [4, 2], [4, 10], [0, 10], [0, 0]])
+    chord = _chain([[5.0, 2.0], [14.0, 8.0]])  # into the second slot, to its far wall
+    postures = np.array([[[x, 40.0], [x + 0.1 * k, 2.0]] for x in (4.5, 5.0, 5.5, 12.5, 13.0)
+                         for k in (-2, 0, 2)])
+    truth = shapely.Polygon(outline)
+    return outline, chord, postures, truth
+
+
+def test_an_unknown_chord_the_probe_went_through_closes_nothing():
+    """The chord crosses the slots the probe traced: with the probe's postures it is left
+    out and the region is the true section; without them the chord fills most of both slots
+    (the triangle it cuts off in the first, the part of the second below it)."""
+    outline, chord, postures, truth = _comb_slice()
+    seen = slice_region([outline], [], [], [chord], snap=1e-6, free=postures, margin=0.05)
+    blind = slice_region([outline], [], [], [chord], snap=1e-6)
+    assert seen.geometry.symmetric_difference(truth).area < 1e-6
+    assert blind.geometry.difference(truth).area > 5.0  # slot space filled
+    assert "unknown" not in [p.kind for p in seen.pieces]
+
+
+def test_a_chord_no_posture_crosses_keeps_its_fill_and_a_touch_at_an_end_is_no_crossing():
+    """Postures that end on the chord's ends (the probe touched A or B), or pass beside it,
+    do not show the space behind it empty: the chord stays."""
+    outline, chord, _, truth = _comb_slice()
+    at_ends = np.array([[[5.0, 40.0], chord[0]], [[13.99, 40.0], [13.99, 8.0]],
+                        [[-5.0, 40.0], [-5.0, -10.0]]])
+    reg = slice_region([outline], [], [], [chord], snap=1e-6, free=at_ends, margin=0.05)
+    assert "unknown" in [p.kind for p in reg.pieces]
+    assert reg.geometry.difference(truth).area > 5.0

@@ -12,13 +12,13 @@ from recon3d.config import RunConfig
 from recon3d.sensing.regions import RegionsAsSensed
 from recon3d.spellings import make_config
 from recon3d.surface import reconstruct
-from recon3d.surface.closure import slice_region
+from recon3d.surface.closure import result_region
 
 reconstruct_module = importlib.import_module("recon3d.surface.reconstruct")  # not the function
 
 
 def _fresh(run):
-    return [[slice_region(s.result.w1, s.result.w2, s.result.w3, s.result.unknown, 2 * run.tol)
+    return [[result_region(s.result, 2 * run.tol, run.config.noise * run.eps)
              for s in fam.slices] for fam in run.families]
 
 
@@ -36,9 +36,9 @@ def counted_run():
     reconstruction itself (after the sensing) and those closed as slices came back."""
     calls = {"reconstruct": 0, "sensing": 0, "at_progress": []}
     mp = pytest.MonkeyPatch()
-    real = reconstruct_module.slice_region
+    real = reconstruct_module.result_region
     import recon3d.sensing.regions as regions_module
-    real_sensing = regions_module.slice_region
+    real_sensing = regions_module.result_region
 
     def counting(where):
         def fn(*args, **kwargs):
@@ -46,8 +46,8 @@ def counted_run():
             return (real if where == "reconstruct" else real_sensing)(*args, **kwargs)
         return fn
 
-    mp.setattr(reconstruct_module, "slice_region", counting("reconstruct"))
-    mp.setattr(regions_module, "slice_region", counting("sensing"))
+    mp.setattr(reconstruct_module, "result_region", counting("reconstruct"))
+    mp.setattr(regions_module, "result_region", counting("sensing"))
     mesh, name, _ = api.load_input("fig18_overhangs")
     config = make_config(slices=3, axis=["z", "x"], jobs=2)
     try:

@@ -1,8 +1,9 @@
 """The slices' filled regions, closed as the slices come back from the sensing (internal).
 
 The main process only waits while the workers sense; each slice's filled region
-(:func:`recon3d.surface.closure.slice_region`: snap, bridge, fill of its W1 / W2 / W3
-pieces and unknown chords, the first step of :func:`recon3d.surface.reconstruct`) needs
+(:func:`recon3d.surface.closure.result_region`: snap, bridge, fill of its W1 / W2 / W3
+pieces and unknown chords, emptied where the probe was, the first step of
+:func:`recon3d.surface.reconstruct`) needs
 that slice alone, so it is computed there, slice by slice, as the pool hands the slices
 back, and the reconstruction takes them as they are (its ``regions``). The same call on
 the same pieces: the same regions (tested ``==``).
@@ -14,14 +15,13 @@ there (``snap`` None), and a region computed with another snap than the run's is
 from __future__ import annotations
 
 from recon3d.records import MeshRun, SliceRun
-from recon3d.surface.closure import SliceRegion, slice_region
+from recon3d.surface.closure import SliceRegion, result_region
 
 __all__ = ["RegionsAsSensed"]
 
 
-def _region(srun: SliceRun, snap: float) -> SliceRegion:
-    r = srun.result
-    return slice_region(r.w1, r.w2, r.w3, r.unknown, snap)
+def _region(srun: SliceRun, snap: float, noise: float) -> SliceRegion:
+    return result_region(srun.result, snap, noise)
 
 
 class RegionsAsSensed:
@@ -29,23 +29,24 @@ class RegionsAsSensed:
 
     snap : float or None -- the run's snap distance (``2 * tol``) when known before the
         sensing; None: :meth:`add` does nothing.
+    noise : float -- the sensor's standard deviation (a length; 0: a perfect sensor).
     """
 
-    def __init__(self, snap: float | None):
-        self.snap = snap
+    def __init__(self, snap: float | None, noise: float = 0.0):
+        self.snap, self.noise = snap, noise
         self._got: dict[int, tuple[object, SliceRegion]] = {}
 
     def add(self, srun: SliceRun) -> None:
         """Close the region of a slice just sensed (the sensing's ``progress`` call)."""
         if self.snap is not None:
-            self._got[id(srun.result)] = (srun.result, _region(srun, self.snap))
+            self._got[id(srun.result)] = (srun.result, _region(srun, self.snap, self.noise))
 
     def for_run(self, run: MeshRun) -> list[list[SliceRegion]] | None:
         """The regions of every slice of ``run``, per family, in its slice order (what
         :func:`recon3d.surface.reconstruct` takes as ``regions``); a slice not seen by
         :meth:`add` is closed here. None when the run's snap is not the one used."""
-        snap = 2.0 * run.tol
-        if self.snap is None or snap != self.snap:
+        snap, noise = 2.0 * run.tol, run.config.noise * run.eps
+        if self.snap is None or snap != self.snap or noise != self.noise:
             return None
         out = []
         for fam in run.families:
@@ -53,6 +54,6 @@ class RegionsAsSensed:
             for s in fam.slices:
                 got = self._got.get(id(s.result))
                 regs.append(got[1] if got is not None and got[0] is s.result
-                            else _region(s, snap))
+                            else _region(s, snap, noise))
             out.append(regs)
         return out

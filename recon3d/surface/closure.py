@@ -15,7 +15,15 @@ opening with no segment, a piece can be stray. The rule, in order:
    from infinity cannot reach without crossing a piece. Holes are therefore
    filled (the probe cannot see them), stray pieces outside add at most a
    sliver between the piece and its bridge, and pieces inside the material
-   change nothing.
+   change nothing;
+0. **chords the probe went through** (before the rest) -- an unknown chord
+   that a posture of the probe crosses farther than ``margin`` from both its
+   ends is left out: the rod, from its joint to its tip, held that posture and
+   touched the contour only at its contacts (§3.2: it does not penetrate), so
+   the space on both sides of the chord there is empty, and the chord closes
+   nothing the probe did not see through. Such chords (a lid from a slot's
+   floor across a tooth to the next slot's wall, laid by a split of an area that
+   ended unknown) would otherwise fill the slots the probe traced.
 
 Examples
 --------
@@ -34,7 +42,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-__all__ = ["Piece", "SliceRegion", "slice_region", "sample_pieces", "KIND_LABEL"]
+__all__ = ["Piece", "SliceRegion", "slice_region", "result_region", "probe_postures",
+           "sample_pieces", "KIND_LABEL"]
 
 KIND_LABEL = {"W1": 1, "W2": 2, "W3": 3, "unknown": 4, "bridge": 4}
 """Surface label of the faces nearest to a piece of each kind."""
@@ -123,7 +132,8 @@ def _bridges(node, where) -> list[Piece]:
     return out
 
 
-def slice_region(w1, w2, w3, unknown, snap: float) -> SliceRegion:
+def slice_region(w1, w2, w3, unknown, snap: float, free=None,
+                 margin: float | None = None) -> SliceRegion:
     """Close the sensed pieces of one slice and fill them (see module doc).
 
     Parameters
@@ -131,11 +141,19 @@ def slice_region(w1, w2, w3, unknown, snap: float) -> SliceRegion:
     w1 : list of (k, 2) float -- traced polylines.
     w2, w3, unknown : list of (2, 2) float -- W2 segments, W3 lids, unknown chords.
     snap : float -- end points closer than this are joined.
+    free : (p, 2, 2) float, optional -- probe postures, joint to tip (:func:`probe_postures`):
+        unknown chords they cross are left out (step 0); None: no step 0.
+    margin : float, optional -- how far from a chord's ends a posture must cross it
+        (default ``snap``).
 
     Returns
     -------
     SliceRegion
     """
+    if free is not None and len(free) and len(unknown):
+        unknown = [c for c, gone in zip(unknown, _pierced(unknown, free,
+                                                          snap if margin is None else margin))
+                   if not gone]
     pieces = _raw_pieces(w1, w2, w3, unknown)
     pieces, node, where = _snap(pieces, snap)
     pieces = pieces + _bridges(node, where)
@@ -151,6 +169,45 @@ def slice_region(w1, w2, w3, unknown, snap: float) -> SliceRegion:
     if geom.geom_type not in ("Polygon", "MultiPolygon"):  # empty collection
         geom = shapely.Polygon()
     return SliceRegion(geom, tuple(pieces))
+
+
+def _pierced(chords, free, margin: float) -> np.ndarray:
+    """(c,) bool: which chords a posture crosses farther than ``margin`` from both ends."""
+    chords = np.asarray(chords, dtype=np.float64).reshape(-1, 2, 2)
+    free = np.asarray(free, dtype=np.float64).reshape(-1, 2, 2)
+    free = free[np.isfinite(free).all(axis=(1, 2))]
+    out = np.zeros(len(chords), dtype=bool)
+    if not len(free) or not len(chords):
+        return out
+    d = chords[:, 1] - chords[:, 0]
+    length = np.hypot(*d.T)
+    keep = length > 2 * margin  # the middle of the chord, margin from each end
+    if not keep.any():
+        return out
+    u = d[keep] / length[keep, None]
+    mid = shapely.linestrings(np.stack([chords[keep, 0] + margin * u,
+                                        chords[keep, 1] - margin * u], axis=1))
+    hit, _ = shapely.STRtree(shapely.linestrings(free)).query(mid, predicate="intersects")
+    out[np.flatnonzero(keep)[np.unique(hit)]] = True
+    return out
+
+
+def probe_postures(motions) -> np.ndarray:
+    """(p, 2, 2) float: the probe, joint to tip, after every motion of a slice's
+    :class:`core2d.motionlog.MotionLog` (none without a log)."""
+    if motions is None or not len(motions):
+        return np.zeros((0, 2, 2))
+    return np.stack([np.asarray(motions.after, dtype=np.float64)[:, :2],
+                     np.asarray(motions.tip, dtype=np.float64)], axis=1)
+
+
+def result_region(result, snap: float, noise: float = 0.0) -> SliceRegion:
+    """:func:`slice_region` of a :class:`core2d.SliceResult`: its pieces, less the unknown
+    chords its motion log's postures went through (margin ``snap + 3 noise``, ``noise`` the
+    sensor's standard deviation, a length)."""
+    return slice_region(result.w1, result.w2, result.w3, result.unknown, snap,
+                        probe_postures(getattr(result, "motions", None)),
+                        snap + 3.0 * noise)
 
 
 def sample_pieces(pieces, spacing: float) -> tuple[np.ndarray, np.ndarray]:

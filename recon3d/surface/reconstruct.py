@@ -13,7 +13,7 @@ import trimesh
 from recon3d.config import diagonal
 from recon3d.records import MeshRun
 from recon3d.surface.caps import CapSettings
-from recon3d.surface.closure import SliceRegion, slice_region
+from recon3d.surface.closure import SliceRegion, result_region
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import grid_step
 from recon3d.surface.fusion import FusionSettings
@@ -63,18 +63,17 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     caps : CapSettings -- with ``route='warp'``, space a slice only closed (unknown chords,
         bridges) ends at that slice between slices (:mod:`recon3d.surface.caps`).
     regions : list of list of SliceRegion, optional -- every slice's
-        :func:`~recon3d.surface.closure.slice_region` (snap ``2 * run.tol``), per family,
+        :func:`~recon3d.surface.closure.result_region` (snap ``2 * run.tol``), per family,
         already computed (e.g. as the slices were sensed); None: computed here.
     warp : WarpSettings -- the aligned blend (:mod:`recon3d.surface.warp`).
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
-    snap = 2.0 * run.tol
+    snap, noise = 2.0 * run.tol, run.config.noise * run.eps
     given, regions, solids, notes = regions, [], [], []
     for f, fam in enumerate(run.families):
         regs = (list(given[f]) if given is not None else
-                [slice_region(s.result.w1, s.result.w2, s.result.w3, s.result.unknown, snap)
-                 for s in fam.slices])
+                [result_region(s.result, snap, noise) for s in fam.slices])
         regions.append(regs)
         if len(fam.slices) < 2:
             solids.append(None)

@@ -46,7 +46,7 @@ import shapely
 
 from recon3d.config import COARSE
 from recon3d.records import SliceRun, robot_time
-from recon3d.surface.closure import result_region
+from recon3d.surface.closure import slice_region
 
 __all__ = ["AdaptivePlan", "region_difference", "feature_width", "sense_adaptive",
            "refine_pairs"]
@@ -149,7 +149,8 @@ def refine_pairs(indices, regions, tol) -> list:
 
 
 def _region(srun: SliceRun, tol: float):
-    return result_region(srun.result, 2.0 * tol).geometry
+    r = srun.result  # its pieces alone: the plan compares sections, not what the probe swept
+    return slice_region(r.w1, r.w2, r.w3, r.unknown, 2.0 * tol).geometry
 
 
 def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], families: int,

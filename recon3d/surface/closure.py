@@ -5,6 +5,14 @@ and the chords ``A B`` of areas still unknown when a budget hit. They do not
 always close: an area can stay unknown, two separate objects can leave an
 opening with no segment, a piece can be stray. The rule, in order:
 
+0. **chords the probe went through** -- an unknown chord
+   that a posture of the probe crosses farther than ``margin`` from both its
+   ends is left out: the rod, from its joint to its tip, held that posture and
+   touched the contour only at its contacts (§3.2: it does not penetrate), so
+   the space on both sides of the chord there is empty, and the chord closes
+   nothing the probe did not see through. Such chords (a lid from a slot's
+   floor across a tooth to the next slot's wall, laid by a split of an area that
+   ended unknown) would otherwise fill the slots the probe traced.
 1. **snap** -- piece end points closer than ``snap`` become one node (their
    mean), so pieces that meet up to the contact resolution share an end;
 2. **bridge** -- nodes of odd degree (free ends) are paired greedily,
@@ -15,15 +23,7 @@ opening with no segment, a piece can be stray. The rule, in order:
    from infinity cannot reach without crossing a piece. Holes are therefore
    filled (the probe cannot see them), stray pieces outside add at most a
    sliver between the piece and its bridge, and pieces inside the material
-   change nothing;
-0. **chords the probe went through** (before the rest) -- an unknown chord
-   that a posture of the probe crosses farther than ``margin`` from both its
-   ends is left out: the rod, from its joint to its tip, held that posture and
-   touched the contour only at its contacts (§3.2: it does not penetrate), so
-   the space on both sides of the chord there is empty, and the chord closes
-   nothing the probe did not see through. Such chords (a lid from a slot's
-   floor across a tooth to the next slot's wall, laid by a split of an area that
-   ended unknown) would otherwise fill the slots the probe traced.
+   change nothing.
 
 Examples
 --------

@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from recon3d.sensing import pool
+from stoppable import default_actions
 
 pytestmark = pytest.mark.skipif(sys.platform != "linux", reason="reads /proc (Linux)")
 
@@ -33,7 +34,7 @@ def _start(args, out: Path) -> subprocess.Popen:
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
     return subprocess.Popen([sys.executable, "-m", "recon3d", *args, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
-                            start_new_session=True)
+                            start_new_session=True, preexec_fn=default_actions)
 
 
 def _children(pid: int) -> list[int]:
@@ -107,6 +108,31 @@ def test_a_signal_ends_the_run_cleanly(tmp_path, sig):
     assert not out.exists()  # created by the run, removed again
 
 
+def _ignoring(sig):
+    def set_up():
+        default_actions()
+        signal.signal(sig, signal.SIG_IGN)
+    return set_up
+
+
+@pytest.mark.parametrize("sig", [signal.SIGHUP, signal.SIGINT])
+def test_a_signal_ignored_at_start_stays_ignored(tmp_path, sig):
+    """``nohup recon3d run ...`` survives a closed terminal (SIGHUP), a run a script put in
+    the background survives the terminal's Ctrl-C (SIGINT): the run ends as if not signalled."""
+    out = tmp_path / "out"
+    env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
+    proc = subprocess.Popen([sys.executable, "-m", "recon3d", "run", "comb", "--slices", "6",
+                             "--jobs", "2", "--no-png", "--quiet", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            start_new_session=True, preexec_fn=_ignoring(sig))
+    workers = _wait_for_workers(proc)
+    os.killpg(proc.pid, sig)
+    code, _, err = _finish(proc)
+    assert code == 0, err
+    assert (out / "metrics.json").is_file()
+    _assert_gone(workers)
+
+
 def test_ctrl_c_to_the_whole_process_group_is_one_line(tmp_path):
     """A terminal's Ctrl-C reaches the workers too: they leave it to the main process."""
     out = tmp_path / "out"
@@ -130,7 +156,7 @@ def test_ctrl_c_during_the_first_compile_does_not_wait_for_it(tmp_path):
                NUMBA_CACHE_DIR=str(cache))
     proc = subprocess.Popen([sys.executable, "-m", "recon3d", *LONG_RUN, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
-                            start_new_session=True)
+                            start_new_session=True, preexec_fn=default_actions)
     side = _wait_for_workers(proc, count=1)  # the compile child: no worker before the compile
     os.killpg(proc.pid, signal.SIGINT)
     code, _, err = _finish(proc)
@@ -228,7 +254,7 @@ def test_ctrl_c_to_an_api_run_prints_no_worker_traceback():
     code = _DUMP + "import recon3d; recon3d.run('comb', slices=24, jobs=2)"
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
+                            stderr=subprocess.PIPE, text=True, env=env, start_new_session=True, preexec_fn=default_actions)
     workers = _wait_for_workers(proc)
     os.killpg(proc.pid, signal.SIGINT)
     _, _, err = _finish(proc)

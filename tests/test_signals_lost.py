@@ -17,6 +17,8 @@ from pathlib import Path
 
 import pytest
 
+from stoppable import default_actions
+
 ROOT = Path(__file__).resolve().parents[1]
 
 _FRAME = """
@@ -76,7 +78,8 @@ def test_sigint_inside_a_place_that_drops_exceptions_still_stops(case, tmp_path)
                                     body=textwrap.indent(textwrap.dedent(body), " " * 8)))
     env = dict(os.environ, PYTHONPATH=str(ROOT), NUMBA_CACHE_DIR=str(tmp_path / "numba"))
     proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env=env)
+                            stderr=subprocess.PIPE, text=True, env=env,
+                            preexec_fn=default_actions)
     first = proc.stdout.readline()
     assert first == "INSIDE\n", (first, proc.stderr.read())
     proc.send_signal(signal.SIGINT)

@@ -16,6 +16,11 @@ it still stops the command.
 A process forked while the handlers are installed (a sensing worker, before
 its own set-up resets them) does not raise: it takes the signal's default
 action, as if no handler were installed.
+
+A signal the command was started with ignored stays ignored (the rule of every
+Unix tool): ``nohup recon3d run ...`` survives a closed terminal (SIGHUP), and a
+run a non-interactive shell put in the background survives the terminal's
+Ctrl-C (SIGINT), as Python itself does for SIGINT.
 """
 from __future__ import annotations
 
@@ -94,12 +99,14 @@ def _handler(owner: int):
 @contextlib.contextmanager
 def interrupts():
     """Within the block, SIGINT / SIGTERM / SIGHUP raise :class:`Interrupted`
-    (main thread only; elsewhere the block changes nothing)."""
+    (main thread only; elsewhere the block changes nothing), except a signal
+    ignored when the block starts (``nohup``: SIGHUP), which stays ignored."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     handle = _handler(os.getpid())
-    before = {sig: signal.signal(sig, handle) for sig in SIGNALS}
+    before = {sig: signal.signal(sig, handle) for sig in SIGNALS
+              if signal.getsignal(sig) is not signal.SIG_IGN}
     try:
         yield
     finally:

@@ -131,6 +131,68 @@ def test_colour_bar_and_its_title_are_backed_white(saved):
         p.close()
 
 
+def _full_box_blocks():
+    """A scene that fills its bounding box (a box) and shows every legend entry."""
+    import pyvista as pv
+
+    box = pv.Cube(x_length=3.0, y_length=1.0, z_length=2.0).triangulate().subdivide(3)
+    surface, truth = box.copy(), box.copy()
+    surface.cell_data["label"] = np.arange(surface.n_cells) % 5 + 1
+    truth.cell_data["coverage"] = np.arange(truth.n_cells) % 5
+    truth.point_data["distance"] = np.linspace(0.0, 4.0, truth.n_points)
+    curves = pv.merge([pv.Line((-1.5, y, 1.0), (1.5, y, 1.0)) for y in (-0.3, -0.1, 0.1, 0.3)])
+    curves.cell_data["class"] = np.arange(curves.n_cells) % 4 + 1
+    return pv.MultiBlock({"surface": surface, "curves": curves, "ground_truth": truth})
+
+
+@pytest.mark.parametrize("scene", ["pocket", "full box"])
+def test_the_object_stays_clear_of_the_legends_and_the_colour_bar(request, scene):
+    """Every drawn point of the object, projected by VTK itself (``WorldToDisplay``), lies in
+    its panel and outside every legend row, the colour bar and its title as VTK lays them out
+    (their bounding boxes in display pixels): the picture is fitted to the free part of the
+    panels (it was drawn under the colour bar, and under a long legend)."""
+    import pyvista as pv
+
+    from recon3d.viz.plot import _drawn_points, coverage_plotter
+
+    blocks = (pv.read(request.getfixturevalue("saved") / "scene.vtm") if scene == "pocket"
+              else _full_box_blocks())
+    p = coverage_plotter(blocks)
+    try:
+        p.render()
+        width, height = p.window_size
+        points = _drawn_points(blocks, most=3000)
+        for ren in p.renderers[:2]:
+            boxes = []
+            for i in range(ren.GetViewProps().GetNumberOfItems()):
+                a = ren.GetViewProps().GetItemAsObject(i)
+                lo = a.GetPositionCoordinate().GetComputedDisplayValue(ren) \
+                    if a.IsA("vtkActor2D") else None
+                if a.IsA("vtkTextActor"):  # its box is relative to its position
+                    box = [0.0] * 4
+                    a.GetBoundingBox(ren, box)
+                    boxes.append([lo[0] + box[0], lo[0] + box[1], lo[1] + box[2], lo[1] + box[3]])
+                elif a.IsA("vtkScalarBarActor"):
+                    hi = a.GetPosition2Coordinate().GetComputedDisplayValue(ren)
+                    boxes.append([lo[0], hi[0], lo[1], hi[1]])
+            assert len(boxes) >= 3  # the legend rows at least
+            at = []
+            for x, y, z in points:
+                ren.SetWorldPoint(x, y, z, 1.0)
+                ren.WorldToDisplay()
+                at.append(ren.GetDisplayPoint()[:2])
+            at = np.asarray(at)
+            x0, y0, x1, y1 = np.asarray(ren.GetViewport()) * [width, height, width, height]
+            assert (at[:, 0] >= x0).all() and (at[:, 0] <= x1).all()
+            assert (at[:, 1] >= y0).all() and (at[:, 1] <= y1).all()
+            for bx0, bx1, by0, by1 in boxes:
+                inside = ((at[:, 0] > bx0 + 1) & (at[:, 0] < bx1 - 1)
+                          & (at[:, 1] > by0 + 1) & (at[:, 1] < by1 - 1))
+                assert not inside.any(), ((bx0, bx1, by0, by1), at[inside][:3])
+    finally:
+        p.close()
+
+
 def test_undercut_gets_w3_faces_over_unreachable_contour():
     """mushroom: the chamber behind the neck cannot be touched; W3 lids close
     it and the faces at the lids are labelled 3. Checked against the exact 2D

@@ -24,7 +24,7 @@ import numpy as np
 
 from recon3d.records import COVERAGE_CLASSES, CURVE_CLASSES, LABELS
 from recon3d.viz import libs
-from recon3d.viz.view import fit_view
+from recon3d.viz.view import fit_view, frame
 
 __all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "DISTANCE_COLORS",
            "load_plotting", "DISTANCE_MAX", "WIDTH", "HEADLINE_ROWS", "headline_rows", "hex_rgb",
@@ -45,6 +45,9 @@ WIDTH = 140
 HEADLINE_ROWS = 8
 """Rows the headline panel holds at font size 9; more rows shrink the font to fit (as many
 more rows as the type is smaller, down to size 4)."""
+CHAR = 0.0125
+"""Width of a legend character at font size 9, as a share of a panel 800 pixels wide (measured
+0.0115 on the pictures, rounded up)."""
 
 
 def has_display() -> bool:
@@ -117,9 +120,12 @@ def _categorical(plotter, mesh, array, colors, **kwargs):
     plotter.add_mesh(mesh, scalars=rgb, rgb=True, preference="cell", **kwargs)
 
 
-def _legend(plotter, entries, top: float = 0.89, step: float = 0.04):
+def _legend(plotter, entries, top: float = 0.89, step: float = 0.04) -> tuple:
     """A legend in the panel's top-left corner: per entry a swatch (a text box of spaces on a
-    background of the colour, edged in grey), a gap, then black text."""
+    background of the colour, edged in grey), a gap, then black text. Returns the rectangle
+    it takes (x0, x1, y0, y1, shares of the panel; :data:`CHAR` per character of text)."""
+    if not entries:
+        return ()
     for k, (name, color) in enumerate(entries):
         y = top - step * k
         swatch = plotter.add_text("    ", position=(0.02, y), viewport=True, font_size=9)
@@ -129,6 +135,8 @@ def _legend(plotter, entries, top: float = 0.89, step: float = 0.04):
         prop.SetFrame(True)
         prop.SetFrameColor(0.45, 0.45, 0.45)
         plotter.add_text(name, position=(0.075, y), viewport=True, font_size=9, color="black")
+    width = 0.085 + CHAR * max(len(name) for name, _ in entries)
+    return ((0.0, width, top - step * (len(entries) - 1) - 0.015, 1.0),)
 
 
 def _split(mesh, array, codes):
@@ -138,7 +146,8 @@ def _split(mesh, array, codes):
 
 
 def _arrows(p, blocks, bounds):
-    """One arrow per slicing axis beside the object, labelled ``slices along z``."""
+    """One arrow per slicing axis beside the object, labelled ``slices along z``; returns
+    (n, 3) float: each arrow's start and label point (the camera keeps them in view)."""
     pv = libs.pyvista()
     normals = np.asarray(blocks.field_data["normals"], dtype=float).reshape(-1, 3) \
         if "normals" in blocks.field_data.keys() else np.zeros((0, 3))
@@ -146,6 +155,7 @@ def _arrows(p, blocks, bounds):
         else []
     lo, hi = np.asarray(bounds[::2]), np.asarray(bounds[1::2])
     size = float(np.linalg.norm(hi - lo))
+    ends = []
     for n, name in zip(normals, axes):
         start = lo - 0.06 * size * (1.0 - np.abs(n))
         p.add_mesh(pv.Arrow(start=start, direction=n, scale=0.35 * size, shaft_radius=0.025,
@@ -153,6 +163,8 @@ def _arrows(p, blocks, bounds):
         p.add_point_labels([start + 0.37 * size * n], [f"slicing axis {name}"], font_size=12,
                            text_color="black", shape_color="white", shape_opacity=0.7,
                            show_points=False, always_visible=True)
+        ends += [start, start + 0.37 * size * n]
+    return np.asarray(ends, dtype=np.float64).reshape(-1, 3)
 
 
 def _panel_a(p, blocks):
@@ -173,8 +185,8 @@ def _panel_a(p, blocks):
         _categorical(p, curves, "class", CURVE_COLORS, line_width=2)
         seen = set(np.unique(curves.cell_data["class"]).tolist())
         entries += [(f"slice curve: {CURVE_CLASSES[c]}", CURVE_COLORS[c]) for c in sorted(seen)]
-    _legend(p, entries)
-    _arrows(p, blocks, blocks.bounds)
+    taken = _legend(p, entries)
+    return taken, _arrows(p, blocks, blocks.bounds)
 
 
 def _panel_b(p, gt):
@@ -182,7 +194,7 @@ def _panel_b(p, gt):
     p.add_text("(b) ground truth, by distance to the surface", font_size=11, color="black",
                position="upper_edge")
     if not gt.n_cells:
-        return
+        return ()
     outside, inside = _split(gt, "coverage", {0})
     hole, scored = _split(inside, "coverage", {4})
     entries = []
@@ -205,8 +217,7 @@ def _panel_b(p, gt):
     if outside.n_cells:
         p.add_mesh(outside, color=OUTSIDE_COLOR, opacity=0.3)
         entries.append(("outside the slab (not scored)", OUTSIDE_COLOR))
-    _legend(p, entries)
-    return pv
+    return _legend(p, entries)
 
 
 def _white_behind(text, bar) -> None:
@@ -273,10 +284,10 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
                    off_screen=off_screen, window_size=list(window_size), border=False)
     p.set_background("white")
     p.subplot(0, 0)
-    _panel_a(p, blocks)
+    taken, arrows = _panel_a(p, blocks)
     p.add_axes(color="black", line_width=3, viewport=(0.0, 0.0, 0.14, 0.2))
     p.subplot(0, 1)
-    _panel_b(p, blocks["ground_truth"])
+    taken += _panel_b(p, blocks["ground_truth"])
     p.add_axes(color="black", line_width=3, viewport=(0.0, 0.0, 0.14, 0.2))
     p.subplot(1, 0)
     _headline(p, blocks, title)
@@ -287,22 +298,29 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
                                 np.asarray(blocks.bounds).reshape(3, 2).T)
     p.view_vector(direction, viewup=up)
     p.reset_camera()
-    p.camera.zoom(0.95)
-    _pan(p.camera, 0.08, 0.1)
+    _fit_free(p.camera, np.r_[_drawn_points(blocks), arrows], window_size[0] / 2 / (window_size[1] * 0.8),
+              taken)  # the views are linked: both panels' legends keep out
     return p
 
 
-def _pan(camera, down: float, right: float) -> None:
-    """Move the picture down and right by shares of the view height (room for the legends)."""
-    up = np.asarray(camera.up, dtype=float)
-    up /= np.linalg.norm(up)
-    pos, focal = np.asarray(camera.position), np.asarray(camera.focal_point)
-    across = np.cross(focal - pos, up)
-    across /= np.linalg.norm(across)
-    height = 2.0 * np.linalg.norm(pos - focal) * np.tan(np.radians(camera.view_angle) / 2)
-    shift = height * (down * up - right * across)
-    camera.position = tuple(pos + shift)
-    camera.focal_point = tuple(focal + shift)
+def _drawn_points(blocks, most: int = 20000) -> np.ndarray:
+    """(n, 3) float: points of what the panels draw (every k-th, at most about ``most``)."""
+    parts = [np.asarray(blocks[name].points) for name in ("ground_truth", "surface")
+             if name in blocks.keys() and blocks[name] is not None and blocks[name].n_points]
+    pts = np.concatenate(parts) if parts else np.asarray(blocks.bounds).reshape(3, 2).T
+    return pts[::max(1, len(pts) // most)]
+
+
+def _fit_free(camera, points, aspect: float, keep_out=()) -> None:
+    """Zoom and shift the picture so that ``points`` fill the panels' free part
+    (:data:`recon3d.viz.view.FREE`: above the colour bar, below the titles) clear of
+    ``keep_out`` (the legends)."""
+    m = np.array([[camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1).GetElement(i, j)
+                   for j in range(4)] for i in range(4)])
+    h = np.c_[points, np.ones(len(points))] @ m.T
+    zoom, center = frame(h[:, :2] / h[:, 3:], keep_out=keep_out)
+    camera.zoom(zoom)
+    camera.SetWindowCenter(*center)
 
 
 def save_png(blocks, path, title: str = "", window_size=(1600, 800)) -> None:

@@ -60,7 +60,7 @@ def fit_view(bounds) -> tuple[np.ndarray, np.ndarray, int]:
     return direction / np.linalg.norm(direction), eye[up_axis].copy(), longest
 
 
-def frame(ndc, box=FREE, keep_out=(), steps: int = 24, most: int = 3000
+def frame(ndc, box=FREE, keep_out=(), steps: int = 16, most: int = 1500
           ) -> tuple[float, np.ndarray]:
     """The zoom and window centre that put projected points inside ``box`` and out of the
     ``keep_out`` rectangles (a legend), as large as that allows, as centred as it allows.
@@ -104,14 +104,16 @@ def frame(ndc, box=FREE, keep_out=(), steps: int = 24, most: int = 3000
     if not rects:
         return best, centred
     few = pts[::max(1, len(pts) // most)]
+    fx, fy = np.meshgrid(np.linspace(0, 1, steps), np.linspace(0, 1, steps))
+    slide = np.c_[fx.ravel(), fy.ravel()]
+    slide = slide[np.argsort(np.hypot(*(slide - 0.5).T), kind="stable")]  # most centred first
     for zoom in best * np.geomspace(1.0, 0.5, steps):
-        room = (target_hi - target_lo) - zoom * size  # how far the box can slide
-        fx, fy = np.meshgrid(np.linspace(0, 1, steps), np.linspace(0, 1, steps))
-        order = np.argsort(np.hypot(fx - 0.5, fy - 0.5), axis=None, kind="stable")
-        for k in order:  # most centred first
-            shift = target_lo + np.array([fx.flat[k], fy.flat[k]]) * room - zoom * lo
-            at = zoom * few + shift
-            if not any(((at[:, 0] > r[0]) & (at[:, 0] < r[1]) & (at[:, 1] > r[2])
-                        & (at[:, 1] < r[3])).any() for r in rects):
-                return float(zoom), -shift
+        shifts = target_lo + slide * ((target_hi - target_lo) - zoom * size) - zoom * lo
+        at = zoom * few[None] + shifts[:, None]  # (positions, points, 2)
+        hit = np.zeros(len(shifts), dtype=bool)
+        for r in rects:
+            hit |= ((at[..., 0] > r[0]) & (at[..., 0] < r[1]) & (at[..., 1] > r[2])
+                    & (at[..., 1] < r[3])).any(axis=1)
+        if not hit.all():
+            return float(zoom), -shifts[np.argmin(hit)]
     return best, centred

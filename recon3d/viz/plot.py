@@ -298,7 +298,8 @@ def coverage_plotter(blocks, title: str = "", off_screen: bool = True,
                                 np.asarray(blocks.bounds).reshape(3, 2).T)
     p.view_vector(direction, viewup=up)
     p.reset_camera()
-    _fit_free(p.camera, np.r_[_drawn_points(blocks), arrows], window_size[0] / 2 / (window_size[1] * 0.8),
+    aspect = (window_size[0] / 2) / (window_size[1] * 4 / 5)  # a 3D panel: half wide, 4/5 high
+    _fit_free(p.camera, np.r_[_drawn_points(blocks), arrows], aspect,
               taken)  # the views are linked: both panels' legends keep out
     return p
 

@@ -32,7 +32,7 @@ CURVE_CLASSES = {1: "W1", 2: "W2", 3: "W3", 4: "unknown"}
 """Codes of the ``class`` array of the curves block of ``scene.vtm``."""
 
 COVERAGE_CLASSES = {0: "outside the slab", 1: "touched", 2: "reachable, missed",
-                    3: "unreachable", 4: "inside a hole"}
+                    3: "unreachable", 4: "inside a hole", 5: "in an opening narrower than eps"}
 """Ground-truth coverage classes (:func:`recon3d.score.evaluate.coverage_mesh`)."""
 
 

@@ -143,3 +143,13 @@ def test_the_3d_scores_leave_out_the_walls_of_a_slot_narrower_than_eps():
     assert deep.sum() > 500
     assert deep.sum() / gt.drawn <= left_out <= in_narrow.sum() / gt.drawn
     assert surf["resolvable"]["fscore"]["1%"] > surf["reachable"]["fscore"]["1%"] + 0.02
+    # the coloured ground truth (scene.vtm, coverage.png) marks the same part: class 5 faces
+    # lie in the narrow slot, and the faces deep in it are class 5
+    from recon3d.api import _coverage
+
+    cov = _coverage(res.mesh, res.sensing, res.recon)
+    c, centre = cov.face_attributes["coverage"], cov.triangles_center
+    in_slot = (np.abs(centre[:, 0] + 6.0) <= 0.2 + 1e-6) & (centre[:, 1] > -4.0 - 1e-6)
+    deep_faces = in_slot & (centre[:, 1] < 10.0 - eps) & (c != 0)
+    assert (c == 5).any() and in_slot[c == 5].all()
+    assert (c[deep_faces] == 5).mean() > 0.9

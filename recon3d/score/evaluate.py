@@ -115,7 +115,9 @@ class ContourCloud:
         """(n,) int8 for (n, 3) points: 0 in no family's slab, else the class of
         the nearest sample among the families whose slab holds the point:
         1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole
-        (unreachable, on a hole loop of the section)."""
+        (unreachable, on a hole loop of the section), 5 reachable, not touched, in an
+        opening narrower than eps (:mod:`core2d.truth.resolvable`: §3.1 closes it by W2;
+        reachable like 1 and 2)."""
         return self.classes(self.nearest(points))
 
     def classes(self, nearest: np.ndarray) -> np.ndarray:
@@ -125,7 +127,10 @@ class ContourCloud:
             return np.zeros(len(j), dtype=np.int8)
         hole = (np.zeros(len(self.points), dtype=bool) if self.in_hole is None
                 else np.asarray(self.in_hole, dtype=bool))
-        c = np.where(self.covered, 1, np.where(self.reachable, 2, np.where(hole, 4, 3)))
+        narrow = (np.zeros(len(self.points), dtype=bool) if self.resolvable is None
+                  else ~np.asarray(self.resolvable, dtype=bool))
+        c = np.where(self.covered, 1, np.where(self.reachable, np.where(narrow, 5, 2),
+                                               np.where(hole, 4, 3)))
         return np.where(j >= 0, c[np.maximum(j, 0)], 0).astype(np.int8)
 
     def resolved(self, nearest: np.ndarray) -> np.ndarray:
@@ -295,8 +300,8 @@ def coverage_mesh(mesh: trimesh.Trimesh, cloud: ContourCloud, max_edge: float,
     """Ground truth subdivided to ``max_edge`` with a class per face and a distance per vertex.
 
     Classes (:data:`recon3d.records.COVERAGE_CLASSES`): 0 outside every slab,
-    1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole (module
-    doc). Returns a trimesh with ``face_attributes['coverage']`` (f,) int8
+    1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole, 5 in an opening
+    narrower than eps (module doc). Returns a trimesh with ``face_attributes['coverage']`` (f,) int8
     (:func:`classified_ground_truth`) and, given the labelled ``surface``,
     ``vertex_attributes['distance']`` (v,) float (:func:`surface_distances`).
     """
@@ -354,7 +359,7 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     d_gt = np.concatenate([d_gt0, d_gt1])
     near = cloud.nearest(gt.points)
     cls = cloud.classes(near)
-    reach = (cls == 1) | (cls == 2)
+    reach = np.isin(cls, (1, 2, 5))
     resolved = cloud.resolved(near)
     if len(gt.points) and len(rec):
         _, j = cKDTree(gt.points).query(rec)

@@ -4,7 +4,8 @@ Blocks, all in world coordinates:
 
 * ``ground_truth`` -- the mesh subdivided to the grid step, cell array
   ``coverage`` (0 outside the slab, 1 touched, 2 reachable but missed,
-  3 unreachable; :data:`recon3d.records.COVERAGE_CLASSES`);
+  3 unreachable, 4 inside a hole, 5 in an opening narrower than eps;
+  :data:`recon3d.records.COVERAGE_CLASSES`);
 * ``surface`` -- the reconstruction, cell array ``label``
   (:data:`recon3d.records.LABELS`);
 * ``curves`` -- the sensed slice curves as lines, cell arrays ``class``

@@ -26,7 +26,7 @@ from recon3d.records import COVERAGE_CLASSES, CURVE_CLASSES, LABELS
 from recon3d.viz import libs
 from recon3d.viz.view import fit_view, frame
 
-__all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "DISTANCE_COLORS",
+__all__ = ["LABEL_COLORS", "CURVE_COLORS", "OUTSIDE_COLOR", "HOLE_COLOR", "NARROW_COLOR", "DISTANCE_COLORS",
            "load_plotting", "DISTANCE_MAX", "WIDTH", "HEADLINE_ROWS", "headline_rows", "hex_rgb",
            "prepare_offscreen", "coverage_plotter",
            "save_png", "has_display"]
@@ -35,8 +35,9 @@ LABEL_COLORS = {1: "#3a7fd5", 2: "#4daf4a", 3: "#e41a1c", 4: "#d4d4d4", 5: "#c9a
 """Face label -> colour of panel (a)."""
 CURVE_COLORS = {1: "#000000", 2: "#a6611a", 3: "#ffd92f", 4: "#ff00ff"}
 """Curve class -> colour: black W1 lines on the blue W1 faces, magenta unknown chords."""
-OUTSIDE_COLOR, HOLE_COLOR = "#bdbdbd", "#2b8cbe"
-"""Panel (b): ground truth outside the slab (see-through), inside a hole of the section."""
+OUTSIDE_COLOR, HOLE_COLOR, NARROW_COLOR = "#bdbdbd", "#2b8cbe", "#de77ae"
+"""Panel (b): ground truth outside the slab (see-through), inside a hole of the section, in an
+opening narrower than eps (closed by W2 by design, §3.1)."""
 DISTANCE_COLORS = ("#1a9850", "#91cf60", "#fee08b", "#fc8d59", "#d73027", "#a50026")
 """Bins of 0.5% of the diagonal from 0 to DISTANCE_MAX; beyond it ``DISTANCE_ABOVE``."""
 DISTANCE_MAX, DISTANCE_ABOVE = 3.0, "#40004b"
@@ -196,7 +197,8 @@ def _panel_b(p, gt):
     if not gt.n_cells:
         return ()
     outside, inside = _split(gt, "coverage", {0})
-    hole, scored = _split(inside, "coverage", {4})
+    hole, rest = _split(inside, "coverage", {4})
+    narrow, scored = _split(rest, "coverage", {5})
     entries = []
     if scored.n_cells and "distance" in scored.point_data.keys():
         p.add_mesh(scored, scalars="distance", cmap=list(DISTANCE_COLORS), clim=[0, DISTANCE_MAX],
@@ -214,6 +216,9 @@ def _panel_b(p, gt):
     if hole.n_cells:
         p.add_mesh(hole, color=HOLE_COLOR, ambient=0.25)
         entries.append(("inside a hole (no rod in the slice plane reaches it)", HOLE_COLOR))
+    if narrow.n_cells:
+        p.add_mesh(narrow, color=NARROW_COLOR, ambient=0.25)
+        entries.append(("in an opening narrower than eps (W2 by design)", NARROW_COLOR))
     if outside.n_cells:
         p.add_mesh(outside, color=OUTSIDE_COLOR, opacity=0.3)
         entries.append(("outside the slab (not scored)", OUTSIDE_COLOR))

@@ -26,6 +26,7 @@ MODULES = [
     "core2d.sim.codes",
     "core2d.visibility",
     "core2d.planner.known",
+    "core2d.planner.segments",
     "core2d.planner.local_search",
     "core2d.planner.mouths",
     "core2d.planner.tip_bound",

@@ -61,3 +61,10 @@ def test_the_dot_of_two_vectors_rounds_without_a_fused_multiply_add():
     a, b = rng.normal(size=(2000, 2)), rng.normal(size=(2000, 2))
     dots = np.array([x @ y for x, y in zip(a, b)])
     assert np.array_equal(dots, a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])
+
+
+def test_numpys_version_is_read_without_importing_it():
+    """The pin reads numpy's version from its ``version.py`` (numpy is not loaded yet when it
+    runs): the same answer as the loaded numpy's own ``__version__``."""
+    major, minor = (int(v) for v in np.__version__.split(".")[:2])
+    assert numerics._numpy_dispatch_names() == ((major, minor) >= (2, 4))

@@ -25,10 +25,11 @@ Two questions the map answers:
 """
 from __future__ import annotations
 
-import numba
 import numpy as np
 
 from core2d.planner.lid_lines import FreeLine, FreeLines
+from core2d.planner.segments import (cross2, cull_margin, near_segments, point_segment_distances,
+                                     segment_params)
 
 __all__ = ["KnownContour", "FreeLine"]
 
@@ -89,7 +90,7 @@ class KnownContour:
         g = self._near(pl[-1], self.join)
         if len(g):
             a, b = self._a[g], self._b[g]
-            ok = _point_segments(pl[-1], a, b) <= self.join
+            ok = point_segment_distances(pl[-1], a, b) <= self.join
             if ok.any():  # the turn test on the same rows as always (BLAS rounds per call)
                 ok &= _turns(end_dir, b - a)
             pieces = self._piece[g[ok]]
@@ -98,11 +99,11 @@ class KnownContour:
         self._next.append(nxt)
         # only ends within ``join`` of the new piece's bounding box can pass it
         lo, hi = pl.min(axis=0), pl.max(axis=0)
-        reach = self.join + _margin(self.join, lo, hi)
+        reach = self.join + cull_margin(self.join, lo, hi)
         near = np.flatnonzero(((ends >= lo - reach) & (ends <= hi + reach)).all(axis=1))
         steps = pl[1:] - pl[:-1]
         for j in near.tolist():
-            ok = _point_segments(ends[j], pl[:-1], pl[1:]) <= self.join
+            ok = point_segment_distances(ends[j], pl[:-1], pl[1:]) <= self.join
             if ok.any() and (ok := ok & _turns(self._end_dirs[j], steps)).any():
                 self._next[j].append((i, int(np.argmax(ok))))
         self._append(pl, i)
@@ -118,9 +119,9 @@ class KnownContour:
         (the margin is far above the rounding of the exact distances)."""
         if not len(self._lo):
             return np.zeros(0, dtype=np.int64)
-        r = r + _margin(r, p, p)
+        r = r + cull_margin(r, p, p)
         out = np.empty(len(self._piece), dtype=np.int64)
-        return out[:_near_segments(float(p[0]), float(p[1]), r, self._lo, self._hi,
+        return out[:near_segments(float(p[0]), float(p[1]), r, self._lo, self._hi,
                                    self._piece, out)]
 
     def _append(self, pl, i) -> None:
@@ -166,7 +167,7 @@ class KnownContour:
                 ends.append((pl[-1], self.poses[i][1], i))
             g = self._near(pl[0], self.join)
             g = g[self._piece[g] != i]
-            if not (_point_segments(pl[0], self._a[g], self._b[g]) <= self.join).any():
+            if not (point_segment_distances(pl[0], self._a[g], self._b[g]) <= self.join).any():
                 starts.append((pl[0], self.poses[i][0], i))
         return ends, starts
 
@@ -191,7 +192,7 @@ class KnownContour:
         """[(j, k)]: piece j passes within ``r`` of ``point`` (2,), first at its segment k."""
         p = np.asarray(point, float)
         g = self._near(p, r)
-        g = g[_point_segments(p, self._a[g], self._b[g]) <= r]
+        g = g[point_segment_distances(p, self._a[g], self._b[g]) <= r]
         pieces = self._piece[g]
         return [(int(j), int(g[np.argmax(pieces == j)]) - self._first[j])
                 for j in np.unique(pieces)]
@@ -208,7 +209,7 @@ class KnownContour:
         # the nearest piece start bounds the answer; only boxes within it count
         bound = float(np.hypot(*(self._starts - p).T).min())
         g = self._near(p, bound)
-        return float(_point_segments(p, self._a[g], self._b[g]).min())
+        return float(point_segment_distances(p, self._a[g], self._b[g]).min())
 
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
@@ -222,10 +223,10 @@ class KnownContour:
             return False
         u = pq / n
         p2, q2 = p + margin * u, q - margin * u
-        d1 = _cross2(q2 - p2, a - p2)
-        d2 = _cross2(q2 - p2, b - p2)
-        d3 = _cross2(b - a, p2 - a)
-        d4 = _cross2(b - a, q2 - a)
+        d1 = cross2(q2 - p2, a - p2)
+        d2 = cross2(q2 - p2, b - p2)
+        d3 = cross2(b - a, p2 - a)
+        d4 = cross2(b - a, q2 - a)
         return bool(np.any((d1 * d2 <= 0) & (d3 * d4 <= 0) & ((d1 != 0) | (d2 != 0))))
 
     def covers(self, a, b, tol: float) -> bool:
@@ -254,16 +255,16 @@ class KnownContour:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
         ga, gb = self._near(pa, tol), self._near(pb, tol)
-        near_a = ga[_point_segments(pa, self._a[ga], self._b[ga]) <= tol]
-        near_b = gb[_point_segments(pb, self._a[gb], self._b[gb]) <= tol]
+        near_a = ga[point_segment_distances(pa, self._a[ga], self._b[ga]) <= tol]
+        near_b = gb[point_segment_distances(pb, self._a[gb], self._b[gb]) <= tol]
         if not len(near_a) or not len(near_b):
             return None
         first = np.asarray(self._first)
-        pos_b = near_b + _param(pb, self._a[near_b], self._b[near_b])  # position along pieces
+        pos_b = near_b + segment_params(pb, self._a[near_b], self._b[near_b])  # position along pieces
         best_b = np.full(len(self.pieces), -np.inf)  # farthest position near B, per piece
         np.maximum.at(best_b, self._piece[near_b], pos_b)
         reached, came = {}, {}  # piece -> earliest position reached, and from which piece
-        todo = [(int(self._piece[g]), g + float(_param(pa, self._a[g:g + 1], self._b[g:g + 1])[0]),
+        todo = [(int(self._piece[g]), g + float(segment_params(pa, self._a[g:g + 1], self._b[g:g + 1])[0]),
                  None) for g in near_a]
         skip = set(exclude)
         while todo:
@@ -326,13 +327,6 @@ class KnownContour:
         return FreeLines(pts, tangent, s / n, self._a, self._b, min_gap)
 
 
-def _margin(r, lo, hi) -> float:
-    """Slack for box culling at distance ``r``: far above the rounding of the
-    distances computed near coordinates up to ``lo``, ``hi``."""
-    return 1e-9 * (r + max(abs(float(lo[0])), abs(float(lo[1])), abs(float(hi[0])),
-                           abs(float(hi[1]))))
-
-
 def _end_direction(pl, span) -> np.ndarray:
     """Direction of a piece's last ``span`` (its first point if shorter): the
     final point may be a touched end a hair behind the last contact."""
@@ -347,62 +341,3 @@ def _turns(d, e) -> np.ndarray:
     n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
     cos = np.divide(e @ d, n, out=np.full(len(e), np.nan), where=n != 0)
     return ~(cos <= -0.5)  # nan (a zero-length direction) turns
-
-
-def _cross2(x, y):
-    return x[..., 0] * y[..., 1] - x[..., 1] * y[..., 0]
-
-
-def _param(p, a, b) -> np.ndarray:
-    """(n,) position of the projection of p on each segment a -> b, in [0, 1]."""
-    out = np.empty(len(a))
-    _project(np.asarray(p, np.float64), _c(a), _c(b), out, np.empty(0))
-    return out
-
-
-def _point_segments(p, a, b) -> np.ndarray:
-    """(n,) distances from point p to segments a -> b."""
-    out = np.empty(len(a))
-    _project(np.asarray(p, np.float64), _c(a), _c(b), np.empty(len(a)), out)
-    return out
-
-
-def _c(x) -> np.ndarray:
-    """``x`` as a C-contiguous float64 array (one compiled signature of :func:`_project`)."""
-    return np.ascontiguousarray(x, dtype=np.float64)
-
-
-@numba.njit(cache=True, nogil=True)
-def _near_segments(px, py, r, lo, hi, piece, out):  # pragma: no cover - compiled
-    """Segments (ascending, into ``out``; their count returned) of the pieces
-    whose box ``lo``, ``hi`` (k, 2) lies within ``r`` of (px, py)."""
-    ok = np.empty(lo.shape[0], dtype=np.bool_)
-    for i in range(lo.shape[0]):
-        ok[i] = (lo[i, 0] - r <= px and lo[i, 1] - r <= py and hi[i, 0] + r >= px
-                 and hi[i, 1] + r >= py)
-    m = 0
-    for j in range(piece.shape[0]):
-        if ok[piece[j]]:
-            out[m] = j
-            m += 1
-    return m
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _project(p, a, b, t, dist):  # pragma: no cover - compiled
-    """Projection parameter ``t`` (n,) of p on each segment a -> b, clamped to
-    [0, 1] (0 for a zero-length segment), and the distance ``dist`` (n,) to
-    the projection when ``dist`` has n entries; in the float64 operations of
-    the numpy expressions they replace."""
-    px, py = p[0], p[1]
-    with_dist = dist.shape[0] > 0
-    for i in range(a.shape[0]):
-        ex, ey = b[i, 0] - a[i, 0], b[i, 1] - a[i, 1]
-        s = ((px - a[i, 0]) * ex + (py - a[i, 1]) * ey) / (ex * ex + ey * ey)
-        s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
-        if s != s:  # zero-length segment: its start
-            s = 0.0
-        t[i] = s
-        if with_dist:
-            dist[i] = np.hypot(a[i, 0] + s * (b[i, 0] - a[i, 0]) - px,
-                               a[i, 1] + s * (b[i, 1] - a[i, 1]) - py)

@@ -1,0 +1,90 @@
+"""Point and segment geometry of the robot's map (:mod:`core2d.planner.known`).
+
+Distances from a point to the map's segments, where a point projects on them, which
+pieces' boxes lie near a point, and the cross product of 2D vectors. The per-point work
+are compiled (numba, cached) and do the float64 operations of the numpy expressions they
+replace, so the map answers the same to the bit.
+"""
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+__all__ = ["cull_margin", "cross2", "segment_params", "point_segment_distances",
+           "near_segments"]
+
+
+def cull_margin(r, lo, hi) -> float:
+    """Slack for box culling at distance ``r``: far above the rounding of the
+    distances computed near coordinates up to ``lo``, ``hi``."""
+    return 1e-9 * (r + max(abs(float(lo[0])), abs(float(lo[1])), abs(float(hi[0])),
+                           abs(float(hi[1]))))
+
+
+def cross2(x, y):
+    """(...) z-component of the cross product of 2D vectors ``x`` and ``y`` (..., 2)."""
+    return x[..., 0] * y[..., 1] - x[..., 1] * y[..., 0]
+
+
+def segment_params(p, a, b) -> np.ndarray:
+    """(n,) position of the projection of p on each segment a -> b, in [0, 1].
+
+    >>> segment_params([1.0, 1.0], np.array([[0.0, 0.0]]), np.array([[4.0, 0.0]])).tolist()
+    [0.25]
+    """
+    out = np.empty(len(a))
+    _project(np.asarray(p, np.float64), _c(a), _c(b), out, np.empty(0))
+    return out
+
+
+def point_segment_distances(p, a, b) -> np.ndarray:
+    """(n,) distances from point p to segments a -> b.
+
+    >>> a, b = np.array([[0.0, 0.0], [0.0, 2.0]]), np.array([[4.0, 0.0], [0.0, 2.0]])
+    >>> point_segment_distances([1.0, 1.0], a, b).tolist()  # the second has zero length
+    [1.0, 1.4142135623730951]
+    """
+    out = np.empty(len(a))
+    _project(np.asarray(p, np.float64), _c(a), _c(b), np.empty(len(a)), out)
+    return out
+
+
+def _c(x) -> np.ndarray:
+    """``x`` as a C-contiguous float64 array (one compiled signature of :func:`_project`)."""
+    return np.ascontiguousarray(x, dtype=np.float64)
+
+
+@numba.njit(cache=True, nogil=True)
+def near_segments(px, py, r, lo, hi, piece, out):  # pragma: no cover - compiled
+    """Segments (ascending, into ``out``; their count returned) of the pieces
+    whose box ``lo``, ``hi`` (k, 2) lies within ``r`` of (px, py)."""
+    ok = np.empty(lo.shape[0], dtype=np.bool_)
+    for i in range(lo.shape[0]):
+        ok[i] = (lo[i, 0] - r <= px and lo[i, 1] - r <= py and hi[i, 0] + r >= px
+                 and hi[i, 1] + r >= py)
+    m = 0
+    for j in range(piece.shape[0]):
+        if ok[piece[j]]:
+            out[m] = j
+            m += 1
+    return m
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _project(p, a, b, t, dist):  # pragma: no cover - compiled
+    """Projection parameter ``t`` (n,) of p on each segment a -> b, clamped to
+    [0, 1] (0 for a zero-length segment), and the distance ``dist`` (n,) to
+    the projection when ``dist`` has n entries; in the float64 operations of
+    the numpy expressions they replace."""
+    px, py = p[0], p[1]
+    with_dist = dist.shape[0] > 0
+    for i in range(a.shape[0]):
+        ex, ey = b[i, 0] - a[i, 0], b[i, 1] - a[i, 1]
+        s = ((px - a[i, 0]) * ex + (py - a[i, 1]) * ey) / (ex * ex + ey * ey)
+        s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+        if s != s:  # zero-length segment: its start
+            s = 0.0
+        t[i] = s
+        if with_dist:
+            dist[i] = np.hypot(a[i, 0] + s * (b[i, 0] - a[i, 0]) - px,
+                               a[i, 1] + s * (b[i, 1] - a[i, 1]) - py)

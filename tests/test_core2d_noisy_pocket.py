@@ -44,7 +44,7 @@ def test_pocket_walls_at_sigma_01_eps():
 def test_end_radius_is_the_papers_while_the_sensor_resolves_half_eps():
     assert end_radius(Resolution.of(1.0)) == 0.5  # perfect sensing: eps/2
     assert end_radius(Resolution.of(1.0, noise=0.1)) == 0.5  # jitter 0.42 <= eps/2 - tol
-    coarse = Resolution.of(1.0, noise=0.3, taxel=0.25)  # jitter 1.31: the same-contact radius
+    coarse = Resolution.of(1.0, noise=0.3, taxel=0.25)  # jitter 1.52: the same-contact radius
     assert end_radius(coarse) == coarse.tip_zone > 0.5
 
 

@@ -4,7 +4,8 @@
 sigma 0.06 eps with taxels 0.25 eps read a jitter of 0.50 eps while the two
 bounds were added (3 sqrt(2) sigma + taxel), beyond eps/2 - tol, so the
 planner took a coarse sensor's radii and lost slots a sensor without taxels
-or without noise keeps; in quadrature it is 0.40 eps.
+or without noise keeps; in quadrature it is 0.40 eps. A coarse sensor keeps
+the sum (its W3 lids stay sound: ``bowl`` z3 below).
 """
 from __future__ import annotations
 
@@ -26,17 +27,17 @@ def test_one_source_keeps_its_own_bound(noise, taxel):
     assert Resolution.of(1.0, noise=noise, taxel=taxel).jitter == 3.0 * 2.0 ** 0.5 * noise + taxel
 
 
-@pytest.mark.parametrize("noise, taxel", [(0.06, 0.25), (0.1, 0.25), (0.3, 0.25)])
-def test_both_add_in_quadrature(noise, taxel):
-    jitter = Resolution.of(1.0, noise=noise, taxel=taxel).jitter
-    assert jitter == pytest.approx(3 * np.sqrt(2 * noise ** 2 + taxel ** 2 / 6))
-    assert jitter < 3 * np.sqrt(2) * noise + taxel
+def test_both_add_in_quadrature_while_that_resolves_half_eps():
+    jitter = Resolution.of(1.0, noise=0.06, taxel=0.25).jitter
+    assert jitter == pytest.approx(3 * np.sqrt(2 * 0.06 ** 2 + 0.25 ** 2 / 6))  # 0.398
+    assert jitter < 3 * np.sqrt(2) * 0.06 + 0.25  # 0.505
 
 
-def test_never_beyond_the_sum_of_the_bounds():
-    """Coarse taxels, faint noise: three standard deviations of the taxel part
-    alone (1.22 taxel) exceed its worst case (taxel); the sum caps them."""
-    assert Resolution.of(1.0, noise=0.02, taxel=1.0).jitter == 3 * 2 ** 0.5 * 0.02 + 1.0
+@pytest.mark.parametrize("noise, taxel", [(0.1, 0.25), (0.3, 0.25), (0.02, 1.0)])
+def test_a_coarse_sensor_keeps_the_sum_of_the_bounds(noise, taxel):
+    """In quadrature 0.52, 1.31 and 1.23 eps: none resolves eps/2, so the coarse
+    path keeps the radii it was measured sound with."""
+    assert Resolution.of(1.0, noise=noise, taxel=taxel).jitter == 3 * 2 ** 0.5 * noise + taxel
 
 
 def test_fine_noise_with_taxels_resolves_half_eps():
@@ -91,3 +92,21 @@ def test_outlines_at_fine_noise_with_taxels(kind, seed):
     assert m["coverage_sensor"] >= 0.98, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98
     assert not res.stats.budget_hit and res.stats.motions <= 2 * base.stats.motions
+
+
+def test_a_coarse_sensors_w3_lids_stay_sound():
+    """``bowl`` z3 of 8 at sigma 0.3 eps, taxels 0.25 eps (the sensor study's
+    case): with the quadrature on the coarse path too (1.31 eps) a W3 lid hid
+    reachable contour farther than eps/2 + 2 sigma from it; with the sum none."""
+    import meshes
+    import slicer
+
+    mesh = meshes.load("bowl")
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=8)[3]
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+    sensor = SensorModel.of_eps(eps, 0.3, 0.25, 3)
+    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps, sensor=sensor)
+    m = sensor_metrics(loops, res, eps, sensor.noise)
+    assert m["w3_unsound_count_sensor"] == 0

@@ -6,9 +6,8 @@ noisy sensor widens by its jitter (the distance within which two readings
 of one point lie, :attr:`~core2d.resolution.Resolution.jitter`): the same-contact
 radius eps/2 + jitter (:func:`~core2d.planner.grazing.end_radius`) and
 ``near`` = 2 tol + jitter. Where the sensor does not resolve eps/2
-(sigma 0.3 eps, taxels 0.25 eps: jitter 1.52 eps as it was measured, the
-bounds added; 1.31 eps in quadrature) a lid between the W2 distance
-eps + jitter and twice the same-contact radius long (2.52 - 4.04 eps)
+(sigma 0.3 eps, taxels 0.25 eps: jitter 1.52 eps) a lid between the W2
+distance eps + jitter and twice the same-contact radius long (2.52 - 4.04 eps)
 had no point farther than that radius from both ends. No pass could find a
 new contact, the W3 proof of the revisit's step 2 had no line to check, and
 the lid's whole middle lay within ``near`` of the recorded pieces that end

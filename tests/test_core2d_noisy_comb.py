@@ -16,7 +16,7 @@ from core2d import SensorModel, sense_slice
 from core2d.planner.grazing import Blockers, beyond_ends, resolves_half_eps, steep_enough
 from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
-from outlines import slotted_block
+from outlines import outline, slotted_block
 from slicer.contact.exact import ExactContact
 
 SLOTS = (6.0, 4.0, 2.5, 1.5)
@@ -76,3 +76,19 @@ def test_blockers_stop_passes_through_the_spot_a_pass_stopped_at_in_front():
     off = Blockers.of(Resolution.of(1.0), reach=100.0)  # perfect sensing: inactive
     off.add(a, b, joint=[5.0, 50.0], point=[5.0, 20.0])
     assert not off.stops([5.0, 0.0], down)
+
+
+def test_grazing_passes_that_end_at_a_touched_end_prove_no_w3():
+    """The ``comb`` outline (seed 1), sensor seed 1001, sigma 0.1 eps: a lid
+    1.66 eps long laid across a slot 1.5 eps wide near its top. Every pass
+    through it ran within 6 degrees of the lid and met the wall 0.1 - 0.6
+    eps below A_i, within eps/2 + 2 sigma of it: without
+    :func:`steep_enough` in the revisit's "each ended at a touched end" the
+    lid was W3 over the reachable slot (one unsound lid)."""
+    loops = outline("comb", np.random.default_rng(1), 1.0)
+    pts = np.concatenate(loops)
+    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
+    res = sense_slice(ExactContact(loops), ws, 1.0, sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 1001))
+    m = sensor_metrics(loops, res, 1.0, 0.1)
+    assert m["w3_unsound_count_sensor"] == 0
+    assert m["precision_sensor"] >= 0.98

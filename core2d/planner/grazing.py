@@ -27,7 +27,9 @@ all are off with a perfect sensor (the paper's flow is unchanged):
   revisit's sweep (one pass every eps/2 along the lid) resolves the contour
   behind the lid at eps/2 only where a pass's landing is known to better
   than eps/2: sigma / tan(alpha) < eps/2. Shallower sweep passes are not
-  made (the six spread passes of the revisit still are).
+  made (the six spread passes of the revisit still are), and a shallower
+  pass that ends at a touched end is no evidence for the revisit's W3 "each
+  pass ended at a touched end".
 * :class:`Blockers` (:func:`resolves_half_eps`) -- a revisit pass that stops
   in front of the lid (its segment from the joint to the contact C does not
   cross the lid, and C is at no end) met contour on a line the map called

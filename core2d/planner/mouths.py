@@ -31,13 +31,23 @@ unchanged):
   revisit, one-sided, ...) stay W2 at once: processing those too lost
   coverage in the slots ~1 eps wide of the ``comb`` outlines (0.98 -> 0.91).
 * **A chain that hops a mouth covers nothing** (:func:`covered`).
+* **A mouth whose inside stays unknown is W2** (:func:`close_unresolved`):
+  when the flow behind a processed mouth leaves an area unknown, the
+  mouth is closed W2 at the end of the run, as at a dead end. A slit a
+  little narrower than eps reads wider than eps often enough (the two ends
+  are readings: at sigma 0.1 eps a mouth 0.87 eps wide read 1.06 on the
+  ``comb`` outline seed 0) to be entered; the rod fits, but with a wall
+  the jitter cannot tell from the other, the children close W2 along one
+  wall and leave the rest unknown, and the contour behind the mouth --
+  which the noiseless flow approximates by the mouth's W2 -- was covered
+  by nothing.
 """
 from __future__ import annotations
 
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["JUMPS", "is_mouth", "covered"]
+__all__ = ["JUMPS", "is_mouth", "covered", "close_unresolved"]
 
 JUMPS = ("case2-1", "case2-2", "hop")
 """Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
@@ -85,3 +95,37 @@ def covered(known, a, b, tol: float, res: Resolution) -> bool:
         return known.covers(a, b, tol)
     hop = known.widest_hop(a, b, tol)
     return hop is not None and hop < res.eps
+
+
+def close_unresolved(run) -> int:
+    """Close W2 every processed mouth of ``run`` (an
+    :class:`~core2d.planner.run.Exploration`) that was split and has a
+    descendant area that ended unknown; returns how many.
+
+    The mouth read shorter than eps + jitter, the width the sensor cannot
+    tell from eps (§3.1 at the sensor's resolution); the flow behind it
+    resolved part of C_A^B and left the rest unknown. As at a dead end
+    (``Exploration.defer``) the mouth's chord is written W2; the unknown
+    areas behind it stay reported as they are."""
+    records = run.result.areas
+    kids: dict[int, list[int]] = {}
+    for rec in records:
+        kids.setdefault(rec.parent, []).append(rec.index)
+
+    def unresolved(i) -> bool:
+        todo = list(kids.get(i, ()))
+        while todo:
+            j = todo.pop()
+            if records[j].outcome == "unknown":
+                return True
+            todo.extend(kids.get(j, ()))
+        return False
+
+    closed = 0
+    for area in run.mouths:
+        rec = records[area.index]
+        if rec.outcome == "split" and unresolved(area.index):
+            run.close(area, "W2", "split, but an area behind it stayed unknown; "
+                                  "Dist(A,B) < eps + the sensor's jitter")
+            closed += 1
+    return closed

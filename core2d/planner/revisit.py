@@ -61,7 +61,13 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
      of its touched ends (within eps/2 of A_i or B_i) -> **W3 (step 4), probed at the
      paper's resolution**: the free lines left are those that graze the
      ends, as through a slit narrower than eps (Fig. 6(b)), and they touch
-     nothing the resolution can tell from A_i or B_i;
+     nothing the resolution can tell from A_i or B_i. With a fine noisy
+     sensor a pass counts only when it crosses the lid steeply enough to
+     resolve eps/2 behind it (:func:`~core2d.planner.grazing.steep_enough`):
+     a pass within a few degrees of the lid lands sigma / tan(alpha) from
+     where it crossed, and such passes ending near A_i proved W3 a lid laid
+     across a reachable slot 1.5 eps wide (``comb`` outline seed 1, sigma
+     0.1 eps, sensor seed 1001: every pass ran within 6 degrees of the lid);
    * otherwise -> ``unknown``, reported with the lid in the result.
 
 A pass that touches reachable contour behind the lid farther than eps/2
@@ -76,7 +82,8 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
-from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
+from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
+                                    steep_enough)
 from core2d.planner.mouths import covered
 from core2d.planner.regions import Posture, cross, near_probe
 from core2d.planner.short_lids import lid_end_radius, on_map
@@ -133,11 +140,26 @@ def holds_lid(run: Exploration, area) -> bool:
     into V_i), once from beyond each end; the lid is held when the tip
     touches the far end and the probe passes the near one, both within
     eps/2. A lid laid through material -- across a wall the robot has not
-    recorded -- stops the tip short of its far end."""
+    recorded -- stops the tip short of its far end.
+
+    Under a noisy sensor whose readings resolve eps/2
+    (:func:`~core2d.planner.grazing.resolves_half_eps`) the line is shifted
+    tol + the jitter into V_i: the ends are readings, and a lid read a
+    hair off an unrecorded wall, its V_i on the wall's side (a Case 2-2
+    child in a slit whose far wall the robot touched), was held along the
+    slit though its V_i is material; the W3 proof then found every line
+    from F to it blocked by the wall's outer face (``tests/
+    test_core2d_noisy_mouths.py``, thin wall, sensor seed 2). Two readings
+    of a point lie within eps/2 - tol there, so the shifted line still
+    meets the far end within the same-point radius. Taxels alone keep the
+    shift tol: with the jitter (0.25 eps) the two sound W3 lids of the
+    ``mushroom`` scene's z4 (taxels 0.25 eps) were not held any more."""
     probe, same = run.probe, run.res.tip_zone
     a, b = np.asarray(area.a, float), np.asarray(area.b, float)
     u = (b - a) / area.dist
-    shift = run.res.tol * np.array([-u[1], u[0]])  # towards V_i (Definition 3)
+    noisy = run.res.noise > 0 and resolves_half_eps(run.res)
+    off = run.res.tol + (run.res.jitter if noisy else 0.0)
+    shift = off * np.array([-u[1], u[0]])  # towards V_i (Definition 3)
     for near, far, d in ((a, b, u), (b, a, -u)):
         if not run.budget():
             return False
@@ -322,7 +344,8 @@ def revisit_one(run: Exploration, area):
             return run.children(area, kids)
         area.tries += 1
         escaped |= c is None
-        ends_only &= c is not None and _near_end(run, area, c, run.res.sensor_tol)
+        ends_only &= (c is not None and _near_end(run, area, c, run.res.sensor_tol)
+                      and steep_enough(run.res, area.a, area.b, direction))
         if c is not None and not _near_end(run, area, c):
             blockers.add(area.a, area.b, pose_c.joint, c)
     note = f"{area.tries} passes through the lid found nothing new"

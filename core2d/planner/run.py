@@ -48,7 +48,7 @@ from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.mouths import covered, is_mouth
+from core2d.planner.mouths import close_unresolved, covered, is_mouth
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
@@ -173,6 +173,7 @@ class Exploration:
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
+        self.mouths = []  # areas processed as mouths (core2d.planner.mouths)
         # the robot's map; gaps narrower than eps (+ the sensor's jitter) are W2 (§3.1)
         self.known = KnownContour(join=self.res.w2_dist) if flow.map else None
 
@@ -241,6 +242,7 @@ class Exploration:
             if not (self.flow.map and is_mouth(self.res, area.dist, area.rule)):
                 return self.close(area, "W2", "Dist(A,B) < eps")
             area.mouth = True  # reads >= eps: processed, W2 at a dead end
+            self.mouths.append(area)
         same = self.same
         # no hop across a mouth (a gap that reads >= eps) counts (core2d.planner.mouths)
         if self.flow.covers and covered(self.known, area.a, area.b, same, self.res):
@@ -379,6 +381,7 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out
         run.close(area, "unknown", run.result.areas[area.index].note)
+    close_unresolved(run)  # a mouth whose inside stayed unknown is W2
     if flow.map:  # contour left unrecorded is reported, never dropped
         report_leftovers(run)
     run.result.stats = final_stats(probe, escapes=run.counters.escapes,

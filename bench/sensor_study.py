@@ -14,9 +14,15 @@ budget hits. Then, per case (a scene or mesh over its slices, an outline), which
 issue's targets at each level: coverage within eps/2 + 2 sigma (over the reachable contour
 and over the part eps resolves), precision >= 0.98, motions <= 2 x noiseless, no budget hit.
 
+One seed's coverage is a lottery at +-0.01 (and a slot's worth on the ``comb`` outlines):
+``--seeds K`` runs every noisy level K times per case, with sensor seeds seed, seed + 1000,
+..., seed + 1000 (K - 1) (the noiseless run once). The summary's ``slices`` then counts
+slice runs, and each case is judged once per sensor seed ("comb-0 (sensor seed +1000)").
+
     python -m bench.sensor_study                       # every group, every level
     python -m bench.sensor_study --groups scenes --levels 0.3:0.25 --jobs 2
     python -m bench.sensor_study --groups scenes --slices 8 --levels 0.1:0 --only comb
+    python -m bench.sensor_study --groups outlines,scenes --levels 0.1:0 --seeds 3
 
 Groups: ``outlines`` (``--per-kind`` seeded outlines of each kind of
 ``tests/outlines.py``, exact backend, eps 1), ``scenes`` (the middle z-slice
@@ -43,7 +49,10 @@ LEVELS = ((0.03, 0.0), (0.1, 0.0), (0.3, 0.0), (1.0, 0.0), (0.0, 0.25), (0.3, 0.
 GROUPS = ("outlines", "scenes", "meshes")
 
 
-def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
+def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]:
+    """Rows of one slice: the noiseless run, then every level once per sensor seed
+    ``seed + 1000 j`` (j < ``seeds``; j = 0 is the case's own seed), each with its
+    ``sensor_seed`` and ``ratio`` (motions over the noiseless run's)."""
     from core2d import SensorModel, sense_slice
     from core2d.truth.metrics import sensor_metrics, slice_metrics
     from core2d.truth.reachability import reachable_samples
@@ -52,13 +61,15 @@ def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
     samples = reachable_samples(loops, eps / 4)
     resolved = resolvable(loops, samples[0].points, eps)
     rows = []
-    for noise, taxel in ((0.0, 0.0),) + tuple(levels):
-        sensor = SensorModel.of_eps(eps, noise, taxel, seed)
+    runs = [(0.0, 0.0, 0)] + [(n, t, j) for n, t in levels for j in range(seeds)]
+    for noise, taxel, j in runs:
+        sensor = SensorModel.of_eps(eps, noise, taxel, seed + 1000 * j)
         res = sense_slice(contact, ws, eps, max_motions=budget, sensor=sensor)
         m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples, resolved=resolved)
         m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
                                 resolved=resolved))
-        rows.append({"noise": noise, "taxel": taxel, **{k: m[k] for k in (
+        rows.append({"noise": noise, "taxel": taxel, "sensor_seed": seed + 1000 * j,
+                     "repeat": j, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
             "coverage_resolvable_sensor", "covered_resolvable_length_sensor",
             "resolvable_length",
@@ -71,7 +82,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget) -> list[dict]:
     return rows
 
 
-def _outline_case(kind, seed, levels, budget):
+def _outline_case(kind, seed, levels, budget, seeds=1):
     from outlines import outline
 
     from slicer import ExactContact
@@ -80,10 +91,10 @@ def _outline_case(kind, seed, levels, budget):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget)
+    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget, seeds)
 
 
-def _mesh_case(source, count, index, levels, budget):
+def _mesh_case(source, count, index, levels, budget, seeds=1):
     import meshes
     import slicer
 
@@ -95,7 +106,7 @@ def _mesh_case(source, count, index, levels, budget):
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     return _score(loops, cut.contact("embree"), (center, radius + eps), eps, levels, index,
-                  budget)
+                  budget, seeds)
 
 
 def cases(args):
@@ -152,10 +163,10 @@ def _quiet_repeats() -> None:
 
 
 def _run(job):
-    group, name, fn, a, levels, budget = job
+    group, name, fn, a, levels, budget, seeds = job
     t0 = time.perf_counter()
     try:
-        rows = fn(*a, levels, budget)
+        rows = fn(*a, levels, budget, seeds)
     except Exception as exc:  # a crash is a finding, reported, not fatal
         return [{"group": group, "name": name, "error": f"{type(exc).__name__}: {exc}"[:200]}]
     for r in rows:
@@ -220,8 +231,9 @@ def per_case(rows) -> list[dict]:
     keyed = {}
     for r in rows:
         if "error" not in r:
-            keyed.setdefault((r["group"], r["name"].split(":")[0], r["noise"], r["taxel"]),
-                             []).append(r)
+            name = r["name"].split(":")[0] + (f" (sensor seed +{1000 * r['repeat']})"
+                                               if r.get("repeat") else "")
+            keyed.setdefault((r["group"], name, r["noise"], r["taxel"]), []).append(r)
     out = []
     for (g, name, noise, taxel), rs in keyed.items():
         def total(num, den):
@@ -242,6 +254,7 @@ def verdicts(rows) -> str:
     """Per sensor level with a coverage target: how many cases meet each target, and the
     cases that miss one (their figures)."""
     cases_ = per_case(rows)
+    unit = "case runs (cases x sensor seeds)" if any(r.get("repeat") for r in rows) else "cases"
     lines = []
     for noise, taxel in sorted({(c["noise"], c["taxel"]) for c in cases_}):
         target = coverage_target(noise, taxel)
@@ -254,7 +267,7 @@ def verdicts(rows) -> str:
                   "motions <= 2 x noiseless": lambda c: c["ratio"] <= 2.0,
                   "no budget hit": lambda c: c["budget"] == 0}
         lines.append(f"sigma {noise:g} eps, taxel {taxel:g} eps (coverage target {target}), "
-                     f"{len(cs)} cases: " + "; ".join(
+                     f"{len(cs)} {unit}: " + "; ".join(
                          f"{k} {sum(f(c) for c in cs)}" for k, f in checks.items()))
         for c in sorted(cs, key=lambda c: (c["group"], c["case"])):
             missed = [k for k, f in checks.items() if not f(c)]
@@ -355,6 +368,9 @@ def main(argv=None) -> int:
     p.add_argument("--only", default="",
                    help="comma-separated case names (before ':z', e.g. comb,deep_slot) to keep")
     p.add_argument("--budget", type=int, default=20000, help="motion budget per slice")
+    p.add_argument("--seeds", type=int, default=1,
+                   help="sensor seeds per case and level (default 1: the case's seed; "
+                   "more: + 1000, + 2000, ...; the noiseless run once)")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
     p.add_argument("--csv", type=Path, default=None,
                    help="also write one row per case and level to this CSV file")
@@ -367,9 +383,12 @@ def main(argv=None) -> int:
         p.error(f"unknown groups {unknown}" if unknown else "levels are NOISE:TAXEL >= 0")
     levels = tuple(lv for lv in args.levels if lv != (0.0, 0.0))
     only = {x.strip() for x in args.only.split(",") if x.strip()}
-    jobs = [(g, n, fn, a, levels, args.budget) for g, n, fn, a in cases(args)
+    if args.seeds < 1:
+        p.error("--seeds is at least 1")
+    jobs = [(g, n, fn, a, levels, args.budget, args.seeds) for g, n, fn, a in cases(args)
             if not only or n.split(":")[0] in only]
-    print(f"sensor study: {len(jobs)} cases x {len(levels) + 1} runs, {args.jobs} jobs",
+    print(f"sensor study: {len(jobs)} cases x {len(levels) * args.seeds + 1} runs, "
+          f"{args.jobs} jobs",
           file=sys.stderr)
     t0 = time.perf_counter()
     rows = []

@@ -315,7 +315,9 @@ def chart(summary, path: Path) -> None:
                              color="red")
         top.set_ylim(0, 1.12 * max(max(s["ratio_max"] for s in rs), 2.0))
         top.set_ylabel("motions / noiseless motions")
-        top.set_title(f"{g} ({rs[0]['slices']} slices): motions")
+        runs = max(s["slices"] for s in rs) // max(rs[0]["slices"], 1)  # sensor seeds
+        top.set_title(f"{g} ({rs[0]['slices']} slices): motions"
+                      + (f"\n{runs} sensor seeds per noisy level" if runs > 1 else ""))
         bottom.plot(x, [s["coverage_sensor"] for s in rs], "o-", label="total")
         bottom.plot(x, [s["cov_sensor_min"] for s in rs], "v--", label="worst slice")
         targets = [(xi, coverage_target(s["noise"], s["taxel"])) for xi, s in zip(x, rs)]

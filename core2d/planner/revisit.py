@@ -148,8 +148,8 @@ def holds_lid(run: Exploration, area) -> bool:
     hair off an unrecorded wall, its V_i on the wall's side (a Case 2-2
     child in a slit whose far wall the robot touched), was held along the
     slit though its V_i is material; the W3 proof then found every line
-    from F to it blocked by the wall's outer face (``tests/
-    test_core2d_noisy_mouths.py``, thin wall, sensor seed 2). Two readings
+    from F to it blocked by the wall's outer face (the thin wall of
+    ``tests/test_core2d_noisy_mouths.py``, sensor seed 2). Two readings
     of a point lie within eps/2 - tol there, so the shifted line still
     meets the far end within the same-point radius. Taxels alone keep the
     shift tol: with the jitter (0.25 eps) the two sound W3 lids of the

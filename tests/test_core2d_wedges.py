@@ -112,14 +112,14 @@ def test_slender_wedge_pockets(depth, apex, tilt, spike):
     assert m["precision"] >= 0.99
 
 
-def _hops(pl, sign=1.0):
+def _hops(pl, sign=1.0, jump=np.inf):
     """Areas the hop rule registers for one traced polyline (eps = 1)."""
     from core2d.planner.regions import Posture
     from core2d.planner.tracing import _split_hops
     pose = Posture(np.zeros(2), np.array([0.0, -1.0]))
     new = []
     out, _ = _split_hops([np.asarray(pl, float)], [(pose, pose)], 0.25, sign, new, False,
-                         0, 1, near=0.1)
+                         0, 1, near=0.1, jump=jump)
     return new, out
 
 
@@ -144,3 +144,41 @@ def test_hop_at_a_polyline_end_is_read_against_the_wall_before_it():
     assert [a.rule for a in new] == ["hop"]
     new, _ = _hops(np.concatenate([wall, [[-0.15, 1.45]]]), sign=-1.0)
     assert new == []
+
+
+def test_a_first_step_longer_than_the_same_point_radius_is_a_hop():
+    """D_i read at the bottom of a slot, the trace's first contact on the
+    top face beside the slot's corner 45 eps above (``deep_slot`` z1 at
+    sigma 0.3 eps, taxels 0.25 eps): D_i lies on the material side of the
+    top face's line, so the end test takes the step for a convex corner's
+    chord; a first step longer than the same-point radius (``jump``) is a
+    hop whatever its side. A first step within the radius keeps the end test."""
+    top = np.stack([np.linspace(-2.5, -17.0, 30), np.full(30, 30.0)], axis=1)  # leftwards
+    pl = np.concatenate([[[1.5, -15.0]], top])  # material below: on the left, sign -1
+    assert _hops(pl, sign=-1.0)[0] == []  # the end test alone: a corner's chord
+    new, out = _hops(pl, sign=-1.0, jump=2.02)  # sigma 0.3 + taxels 0.25: eps/2 + 1.52
+    assert [a.rule for a in new] == ["hop"]
+    assert [len(p) for p in out] == [1, 30]  # D_i alone (dropped as W1), the face traced
+    near = np.concatenate([[[-2.0, 29.0]], top])  # 1.1 from the first contact
+    assert _hops(near, sign=-1.0, jump=2.02)[0] == []
+
+
+def test_deep_slot_w1_stays_on_the_contour_at_sigma_03_taxel_025():
+    """The built-in ``deep_slot``, z-slice 1 of 8 (Embree), sensor seed 1001:
+    a W1 step from D_i 100 eps down the slot made precision within eps/2 +
+    2 sigma 0.858; with the first step's jump rule 0.999."""
+    import meshes
+    import slicer
+    from core2d import SensorModel
+    from core2d.truth.metrics import sensor_metrics
+
+    mesh = meshes.load("deep_slot")
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=8)[1]
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
+                      sensor=SensorModel.of_eps(eps, 0.3, 0.25, 1001))
+    m = sensor_metrics(loops, res, eps, 0.3 * eps)
+    assert m["precision_sensor"] >= 0.98, m["precision_sensor"]
+    assert m["w3_unsound_count_sensor"] == 0 and not res.stats.budget_hit

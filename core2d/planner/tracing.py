@@ -262,7 +262,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     appended = cases[-1:] == ["case1"] and np.array_equal(polylines[-1][-1], p_fin)
     polylines, poses = _split_hops(polylines, poses, probe.resolution.hop,
                                    1.0 if toward_B else -1.0, new, fin_is_A, area.index, depth,
-                                   probe.resolution.near, appended)
+                                   probe.resolution.near, appended, probe.resolution.tip_zone)
     keep = [k for k, p in enumerate(polylines) if len(p) >= 2]
     lines = [polylines[k] if toward_B else polylines[k][::-1] for k in keep]
     ends = [poses[k] if toward_B else poses[k][::-1] for k in keep]
@@ -317,8 +317,24 @@ def _off_line(origin, direction, point) -> float:
     return float(d[0] * q[1] - d[1] * q[0])
 
 
+def _is_hop(pl, k, hop, sign, near) -> bool:
+    """Is the step ``pl[k] -> pl[k + 1]`` (longer than ``hop``) a hop by its
+    turns, or at a polyline's end by its side of the contour's line
+    (:func:`_split_hops`)?"""
+    before, after = _reach_back(pl, k, -1, hop), _reach_back(pl, k + 1, 1, hop)
+    if before is None and after is None:
+        return False  # a lone step: no contour slid along on either side
+    step = pl[k + 1] - pl[k]
+    if before is None:  # concave: the free side is left of a line, material right
+        return sign * _off_line(pl[k + 1], pl[after] - pl[k + 1], pl[k]) > near
+    if after is None:
+        return sign * _off_line(pl[k], pl[k] - pl[before], pl[k + 1]) > near
+    return max(sign * _turn(pl[k] - pl[before], step),
+               sign * _turn(step, pl[after] - pl[k + 1])) > HOP_TURN
+
+
 def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
-                appended=False):
+                appended=False, jump=np.inf):
     """W1 is contour the tip slid along. Cut the traced polylines (in trace
     order; ``sign`` +1 when the material lies on their right, -1 on their
     left) at a step longer than the trace's sampling step ``hop`` (eps / 4,
@@ -353,6 +369,16 @@ def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
     material side. Such an area has Dist < eps / 2 and is W2 at once, so
     nothing is probed for it; the step onto the P_fin that Case 1 appends
     (``appended``) is left to :func:`_hop_to`.
+    The first step of a polyline, from D_i (the local search's contact) to
+    the trace's first contact, longer than ``jump`` (the same-point radius
+    eps/2 + jitter, :attr:`~core2d.resolution.Resolution.tip_zone`) is a
+    hop whatever its turn: the controller reports any later step that long
+    as a jump (Case 2), but the trace starts at whatever the probe touches
+    when it starts, and a noisy D_i at the bottom of a slot 9 eps wide with
+    the probe's body on the slot's corner made a W1 step 100 eps long down
+    the slot (``deep_slot`` z1, sigma 0.3 eps, taxels 0.25 eps, sensor seed
+    1001: precision 0.858); the step's far end lay on the material side of
+    the top face's line, so the end test above took it for a corner's chord.
     The pieces keep the postures recorded at their polyline's ends (the
     trace keeps none in between); the new areas carry them too.
     """
@@ -363,18 +389,7 @@ def _split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
             n[-1] = 0.0  # Case 1's step onto P_fin: decided by _hop_to
         start = 0
         for k in np.flatnonzero(n > hop).tolist():
-            before, after = _reach_back(pl, k, -1, hop), _reach_back(pl, k + 1, 1, hop)
-            if before is None and after is None:
-                continue  # a lone step: no contour slid along on either side
-            step = pl[k + 1] - pl[k]
-            if before is None:  # concave: the free side is left of a line, material right
-                if not sign * _off_line(pl[k + 1], pl[after] - pl[k + 1], pl[k]) > near:
-                    continue
-            elif after is None:
-                if not sign * _off_line(pl[k], pl[k] - pl[before], pl[k + 1]) > near:
-                    continue
-            elif not max(sign * _turn(pl[k] - pl[before], step),
-                         sign * _turn(step, pl[after] - pl[k + 1])) > HOP_TURN:
+            if not (k == 0 and n[0] > jump) and not _is_hop(pl, k, hop, sign, near):
                 continue
             out.append(pl[start:k + 1])
             out_poses.append((pose_first, pose_last))

@@ -150,6 +150,18 @@ class Resolution:
         return self.eps + self.jitter
 
     @property
+    def loop_width(self) -> float:
+        """:attr:`tip_zone` / 2 (eps / 4 with perfect sensing): how thick
+        (area / perimeter) the loop a W3 lid closes with recorded contour
+        must be (``core2d.planner.revisit.closes_loop``). A lid laid a
+        reading's scatter beside the wall it would hide -- ``gear`` z7 at
+        sigma 0.3 eps, taxels 0.25 eps, sensor seed 2007: 0.5 - 1.75 eps off
+        a traced tooth flank, 8 eps long -- closes a loop 0.44 eps thick
+        with it; the wall and the lid are one contour at the sensor's
+        resolution, and nothing hides between."""
+        return self.tip_zone / 2.0
+
+    @property
     def fan_spacing(self) -> float:
         """eps / 4: spacing of the fans at the tip, of the samples along the
         probe and the nominal joint step of a compliant trace."""

@@ -14,6 +14,8 @@ import shapely
 
 from core2d import SensorModel, sense_slice
 from core2d.planner import revisit as rv
+from core2d.planner.known import KnownContour
+from core2d.resolution import Resolution
 from outlines import outline
 from slicer.contact.exact import ExactContact
 
@@ -53,3 +55,48 @@ def test_noisy_revisit_lays_few_lids_across_material():
         lids = list(res.w3) + list(res.unknown) + list(res.w2)
         inside += sum(float(shapely.LineString(lid).intersection(solid).length) for lid in lids)
     assert inside < 375.0, f"{inside:.1f} eps of lids inside material"
+
+
+def _wall_and_lid(offset):
+    """A traced wall up x = 0, bent at both ends to the lid's ends ``offset``
+    beside it (B at the bottom, A at the top): the chain B -> A runs up the
+    wall, and with ``offset`` > 0 the loop it makes with the lid runs
+    clockwise, about ``offset`` x 40 in area."""
+    known = KnownContour(join=1.0)
+    up = np.stack([np.zeros(40), np.linspace(0.5, 39.5, 40)], axis=1)
+    known.add(np.concatenate([[[offset, 0.0]], up, [[offset, 40.0]]]))
+    a, b = np.array([offset, 40.0]), np.array([offset, 0.0])
+    return known, SimpleNamespace(a=a, b=b, dist=40.0)
+
+
+def test_a_w3_loop_is_at_least_half_the_same_point_radius_thick():
+    """``gear`` z7 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 2007: a lid
+    0.5 - 1.75 eps beside a traced tooth flank closed a loop 0.44 eps thick
+    and was W3 over the flank (unsound at eps/2 + 2 sigma). The loop must be
+    tip_zone / 2 thick: eps/4 with perfect sensing, as before."""
+    coarse, perfect = Resolution.of(1.0, noise=0.3, taxel=0.25), Resolution.of(1.0)
+    assert perfect.loop_width == 0.25 and round(coarse.loop_width, 3) == 1.011
+    known, area = _wall_and_lid(0.9)  # a loop about 0.41 thick (area / perimeter)
+    assert rv.closes_loop(known, area, 1.0, perfect.loop_width)
+    assert not rv.closes_loop(known, area, 1.0, coarse.loop_width)
+    known, area = _wall_and_lid(-0.9)  # the lid on the other side: counter-clockwise
+    assert not rv.closes_loop(known, area, 1.0, perfect.loop_width)
+    known, area = _wall_and_lid(6.0)  # a pocket 6 eps deep behind the lid: thick enough
+    assert rv.closes_loop(known, area, 1.0, coarse.loop_width)
+
+
+def test_gear_z7_at_sigma_03_taxel_025_proves_no_w3_beside_a_flank():
+    import meshes
+    import slicer
+    from core2d.truth.metrics import sensor_metrics
+
+    mesh = meshes.load("gear")
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=8)[7]
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
+                      sensor=SensorModel.of_eps(eps, 0.3, 0.25, 2007))
+    m = sensor_metrics(loops, res, eps, 0.3 * eps)
+    assert m["w3_unsound_count_sensor"] == 0
+    assert m["precision_sensor"] >= 0.98

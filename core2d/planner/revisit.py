@@ -42,7 +42,8 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    leads from B_i round to A_i, so A_i and B_i lie on one object and the lid
    bridges no islands (several hidden pockets of one loop close it
    together), and the loop encloses material (runs clockwise, at least
-   eps/4 thick).
+   :attr:`~core2d.resolution.Resolution.loop_width` thick, eps/4 with
+   perfect sensing).
 5. When no pass found anything new:
 
    * one left through the lid without any contact -> ``open``: the lid is
@@ -382,7 +383,7 @@ def revisit(run: Exploration) -> None:
     still = []
     for area, why in run.waiting:
         same_gap = [first + k for k, lid in enumerate(lids) if _same_gap(lid, area, run.eps)]
-        if closes_loop(joint, area, run.res.tip_zone, run.eps / 4, same_gap):
+        if closes_loop(joint, area, run.res.tip_zone, run.res.loop_width, same_gap):
             run.close(area, "W3", why)
         else:
             still.append((area, why))

@@ -292,7 +292,8 @@ class Exploration:
         Without ``flow.w3_proof`` (the paper's flow): W3 at once."""
         if not self.flow.w3_proof:
             return self.close(area, "W3", "single probe detection, Area(G) = 0 (§4.2.1)")
-        if (lid_like(self, area) and closes_loop(self.known, area, self.res.tip_zone, self.eps / 4)
+        if (lid_like(self, area) and closes_loop(self.known, area, self.res.tip_zone,
+                                                 self.res.loop_width)
                 and not proof_lines(self, area)):
             return self.close(area, "W3", "single probe detection, Area(G) = 0")
         return self.defer(area, "single probe detection, Area(G) = 0; lines still cross the lid")

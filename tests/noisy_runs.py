@@ -15,7 +15,7 @@ from core2d import SensorModel, sense_slice
 from core2d.truth.metrics import sensor_metrics
 from slicer.contact.exact import ExactContact
 
-__all__ = ["coverages"]
+__all__ = ["coverages", "scene_slice"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
@@ -37,3 +37,21 @@ def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
         assert res.stats.motions <= 2 * base.stats.motions, (seed, res.stats.motions)
         covs.append(m["coverage_sensor"])
     return np.array(covs)
+
+
+def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int):
+    """Sense z-slice ``index`` of 8 of the built-in scene ``name`` (Embree,
+    eps = diagonal / 200) with the sensor (``noise`` and ``taxel`` in eps,
+    ``seed``), as the sensor study does; returns the result and
+    :func:`~core2d.truth.metrics.sensor_metrics` of it."""
+    import meshes
+    import slicer
+
+    mesh = meshes.load(name)
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=8)[index]
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
+                      sensor=SensorModel.of_eps(eps, noise, taxel, seed))
+    return res, sensor_metrics(loops, res, eps, noise * eps)

@@ -68,16 +68,7 @@ def test_textured_pocket_slice_at_sigma_01_eps_lays_no_w1_through_material():
     """``textured_pocket`` z0 (of 8), the sensor study's settings: a W1 segment
     53 eps long through material (precision 0.922) when the second side's
     trace started on the corner the posture at D_i grazed."""
-    import meshes
-    import slicer
-    from core2d import SensorModel, sense_slice
-    from core2d.truth.metrics import sensor_metrics
+    from noisy_runs import scene_slice
 
-    mesh = meshes.load("textured_pocket")
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=8)[0]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
-    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
-                      sensor=SensorModel.of_eps(eps, NOISE, 0.0, 0))
-    assert sensor_metrics(loops, res, eps, NOISE * eps)["precision_sensor"] >= 0.98
+    _, m = scene_slice("textured_pocket", 0, NOISE, 0.0, 0)
+    assert m["precision_sensor"] >= 0.98

@@ -86,17 +86,8 @@ def test_a_w3_loop_is_at_least_half_the_same_point_radius_thick():
 
 
 def test_gear_z7_at_sigma_03_taxel_025_proves_no_w3_beside_a_flank():
-    import meshes
-    import slicer
-    from core2d.truth.metrics import sensor_metrics
+    from noisy_runs import scene_slice
 
-    mesh = meshes.load("gear")
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=8)[7]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
-    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
-                      sensor=SensorModel.of_eps(eps, 0.3, 0.25, 2007))
-    m = sensor_metrics(loops, res, eps, 0.3 * eps)
+    _, m = scene_slice("gear", 7, 0.3, 0.25, 2007)
     assert m["w3_unsound_count_sensor"] == 0
     assert m["precision_sensor"] >= 0.98

@@ -167,18 +167,8 @@ def test_deep_slot_w1_stays_on_the_contour_at_sigma_03_taxel_025():
     """The built-in ``deep_slot``, z-slice 1 of 8 (Embree), sensor seed 1001:
     a W1 step from D_i 100 eps down the slot made precision within eps/2 +
     2 sigma 0.858; with the first step's jump rule 0.999."""
-    import meshes
-    import slicer
-    from core2d import SensorModel
-    from core2d.truth.metrics import sensor_metrics
+    from noisy_runs import scene_slice
 
-    mesh = meshes.load("deep_slot")
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=8)[1]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
-    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
-                      sensor=SensorModel.of_eps(eps, 0.3, 0.25, 1001))
-    m = sensor_metrics(loops, res, eps, 0.3 * eps)
+    res, m = scene_slice("deep_slot", 1, 0.3, 0.25, 1001)
     assert m["precision_sensor"] >= 0.98, m["precision_sensor"]
     assert m["w3_unsound_count_sensor"] == 0 and not res.stats.budget_hit

@@ -289,53 +289,6 @@ def coverage_target(noise: float, taxel: float) -> float | None:
     return {(0.1, 0.0): 0.99, (0.3, 0.25): 0.98}.get((float(noise), float(taxel)))
 
 
-def chart(summary, path: Path) -> None:
-    """Per group (columns): motions over the noiseless run (total and worst
-    slice) with the budget hits written above, and reachable coverage within
-    eps/2 + 2 sigma (total and worst slice), per sensor level."""
-    from recon3d.viz import libs
-
-    plt = libs.pyplot()
-    groups = list(dict.fromkeys(s["group"] for s in summary))
-    fig, axes = plt.subplots(2, len(groups), figsize=(5.5 * len(groups), 8),
-                             constrained_layout=True, squeeze=False)
-    for j, g in enumerate(groups):
-        rs = [s for s in summary if s["group"] == g]
-        x = np.arange(len(rs))
-        labels = [f"σ {s['noise']:g}\nT {s['taxel']:g}" for s in rs]
-        top, bottom = axes[0, j], axes[1, j]
-        top.bar(x - 0.2, [s["ratio"] for s in rs], 0.4, label="total", color="tab:blue")
-        top.bar(x + 0.2, [s["ratio_max"] for s in rs], 0.4, label="worst slice",
-                color="tab:orange")
-        top.axhline(2.0, color="k", ls=":", lw=1, label="target 2×")
-        for xi, s in zip(x, rs):
-            if s["budget"]:
-                top.annotate(f"{s['budget']} budget hit{'s' * (s['budget'] > 1)}",
-                             (xi, s["ratio_max"]), ha="center", va="bottom", fontsize=8,
-                             color="red")
-        top.set_ylim(0, 1.12 * max(max(s["ratio_max"] for s in rs), 2.0))
-        top.set_ylabel("motions / noiseless motions")
-        runs = max(s["slices"] for s in rs) // max(rs[0]["slices"], 1)  # sensor seeds
-        top.set_title(f"{g} ({rs[0]['slices']} slices): motions"
-                      + (f"\n{runs} sensor seeds per noisy level" if runs > 1 else ""))
-        bottom.plot(x, [s["coverage_sensor"] for s in rs], "o-", label="total")
-        bottom.plot(x, [s["cov_sensor_min"] for s in rs], "v--", label="worst slice")
-        targets = [(xi, coverage_target(s["noise"], s["taxel"])) for xi, s in zip(x, rs)]
-        for k, (xi, t) in enumerate([(xi, t) for xi, t in targets if t is not None]):
-            bottom.hlines(t, xi - 0.35, xi + 0.35, color="k", ls=":", lw=1.2,
-                          label="target (0.99 at σ 0.1; 0.98 at σ 0.3, T 0.25)" if k == 0 else None)
-        bottom.set_ylim(min(0.8, min(s["cov_sensor_min"] for s in rs) - 0.02), 1.005)
-        bottom.set_ylabel("reachable coverage within eps/2 + 2σ")
-        bottom.set_title(f"{g}: coverage")
-        for ax in (top, bottom):
-            ax.set_xticks(x, labels, fontsize=8)
-            ax.set_xlabel("sensor level (noise σ, taxel T, in eps)")
-            ax.grid(True, alpha=0.3, axis="y")
-            ax.legend(fontsize=8)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-
-
 def write_csv(path: Path, rows) -> None:
     """One line per case and level (the crashed cases with their error)."""
     import csv
@@ -405,6 +358,8 @@ def main(argv=None) -> int:
         write_csv(args.csv, rows)
     summary = summarise(rows)
     if args.chart is not None:
+        from bench.sensor_study_chart import chart
+
         chart(summary, args.chart)
     print(markdown(summary))
     print()

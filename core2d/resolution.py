@@ -153,7 +153,7 @@ class Resolution:
     def loop_width(self) -> float:
         """:attr:`tip_zone` / 2 (eps / 4 with perfect sensing): how thick
         (area / perimeter) the loop a W3 lid closes with recorded contour
-        must be (``core2d.planner.revisit.closes_loop``). A lid laid a
+        must be (``core2d.planner.w3_checks.closes_loop``). A lid laid a
         reading's scatter beside the wall it would hide -- ``gear`` z7 at
         sigma 0.3 eps, taxels 0.25 eps, sensor seed 2007: 0.5 - 1.75 eps off
         a traced tooth flank, 8 eps long -- closes a loop 0.44 eps thick

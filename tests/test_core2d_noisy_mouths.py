@@ -61,7 +61,7 @@ def test_the_slit_beside_a_thin_wall_at_sigma_01_eps():
     # 0.985 with both rules; 0.77 without the mouths, 0.66 without the hop rule.
     # Sensor seed 2 proved a W3 lid read 0.1 eps off the wall's inner face, its
     # V_i on the wall's side, unless holds_lid shifts its line by the jitter
-    # (core2d.planner.revisit.holds_lid): coverages() asserts every lid sound.
+    # (core2d.planner.w3_checks.holds_lid): coverages() asserts every lid sound.
     assert covs.mean() >= 0.97, covs
 
 

@@ -15,6 +15,7 @@ import shapely
 from core2d import SensorModel, sense_slice
 from core2d.planner import revisit as rv
 from core2d.planner.known import KnownContour
+from core2d.planner.w3_checks import closes_loop
 from core2d.resolution import Resolution
 from outlines import outline
 from slicer.contact.exact import ExactContact
@@ -77,12 +78,12 @@ def test_a_w3_loop_is_at_least_half_the_same_point_radius_thick():
     coarse, perfect = Resolution.of(1.0, noise=0.3, taxel=0.25), Resolution.of(1.0)
     assert perfect.loop_width == 0.25 and round(coarse.loop_width, 3) == 1.011
     known, area = _wall_and_lid(0.9)  # a loop about 0.41 thick (area / perimeter)
-    assert rv.closes_loop(known, area, 1.0, perfect.loop_width)
-    assert not rv.closes_loop(known, area, 1.0, coarse.loop_width)
+    assert closes_loop(known, area, 1.0, perfect.loop_width)
+    assert not closes_loop(known, area, 1.0, coarse.loop_width)
     known, area = _wall_and_lid(-0.9)  # the lid on the other side: counter-clockwise
-    assert not rv.closes_loop(known, area, 1.0, perfect.loop_width)
+    assert not closes_loop(known, area, 1.0, perfect.loop_width)
     known, area = _wall_and_lid(6.0)  # a pocket 6 eps deep behind the lid: thick enough
-    assert rv.closes_loop(known, area, 1.0, coarse.loop_width)
+    assert closes_loop(known, area, 1.0, coarse.loop_width)
 
 
 def test_gear_z7_at_sigma_03_taxel_025_proves_no_w3_beside_a_flank():

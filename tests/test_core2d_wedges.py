@@ -4,7 +4,7 @@ A trace that slid past the mouth of a slit narrower than eps / 2 -- the tip
 hopping from one wall to the next contour in one reading, or reaching P_fin
 across the mouth -- used to record the hop as traced W1 contour, so the
 wedge behind it was neither traced nor approximated. The hop is now an area
-of its own (``core2d.planner.tracing._split_hops``): W2 when narrower than
+of its own (``core2d.planner.hops.split_hops``): W2 when narrower than
 eps (the wedge behind the chord is approximated, §3.1), explored otherwise.
 
 * the two outlines of ``../shared/cases`` that showed it (skipped when
@@ -115,10 +115,10 @@ def test_slender_wedge_pockets(depth, apex, tilt, spike):
 def _hops(pl, sign=1.0, jump=np.inf):
     """Areas the hop rule registers for one traced polyline (eps = 1)."""
     from core2d.planner.regions import Posture
-    from core2d.planner.tracing import _split_hops
+    from core2d.planner.hops import split_hops
     pose = Posture(np.zeros(2), np.array([0.0, -1.0]))
     new = []
-    out, _ = _split_hops([np.asarray(pl, float)], [(pose, pose)], 0.25, sign, new, False,
+    out, _ = split_hops([np.asarray(pl, float)], [(pose, pose)], 0.25, sign, new, False,
                          0, 1, near=0.1, jump=jump)
     return new, out
 

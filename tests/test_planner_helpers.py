@@ -7,7 +7,7 @@ import pytest
 
 from core2d.planar import magnitude
 from core2d.planner.known import _turns
-from core2d.planner.tracing import _reach_back
+from core2d.planner.hops import _reach_back
 
 
 def test_magnitude_is_numpys_norm_bit_for_bit():

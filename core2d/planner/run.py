@@ -50,10 +50,11 @@ from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.mouths import close_unresolved, covered, is_mouth
 from core2d.planner.regions import Posture, near_probe
-from core2d.planner.revisit import closes_loop, finish, lid_like, proof_lines, revisit
+from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
 from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, split_contact,
                                     trace_side)
+from core2d.planner.w3_checks import closes_loop
 from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 

@@ -1,0 +1,143 @@
+"""Hops: steps of a traced polyline that are not contour the tip slid along (§3.1, §4.3.2).
+
+:func:`trace <core2d.planner.tracing.trace_side>` records W1 as the contacts of the
+compliant trace. A step longer than the trace's sampling that turns concave, a step at a
+polyline's end onto the free side of the contour's line, a trace's first step farther than
+the same-point radius from D_i, and Case 1 reaching P_fin across a gap are hops: the
+stretch between their two contacts is registered as an unknown area (rule ``"hop"``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from core2d.planner.areas import register
+
+__all__ = ["split_hops", "hop_to", "HOP_TURN"]
+
+#: a W1 step longer than eps / 4 turning left (concave) by more than this hides contour
+HOP_TURN = np.pi / 4
+
+
+def _reach_back(pl, k, step, hop):
+    """Index of the first point at least ``hop`` from ``pl[k]`` walking by
+    ``step`` (-1 backward, +1 forward), or None: the direction of the
+    contour slid along is read over that stretch, not over single
+    micro-steps (whose contacts scatter by the contact resolution)."""
+    side = pl[:k] if step < 0 else pl[k + 1:]
+    far = np.flatnonzero(np.hypot(*(side - pl[k]).T) >= hop)
+    if not len(far):
+        return None
+    return int(far[-1]) if step < 0 else k + 1 + int(far[0])
+
+
+def _turn(u, w) -> float:
+    """Signed angle (left positive) from direction ``u`` to ``w``."""
+    return float(np.arctan2(u[0] * w[1] - u[1] * w[0], u @ w))
+
+
+def hop_to(pieces, last, p_fin, hop):
+    """Case 1 at the paper's resolution: the controller reports P_fin
+    reached when the tip's step passed within eps / 2 of it. When the last
+    contact lies farther than ``hop`` from P_fin and the step to P_fin does
+    not continue the contour slid along (it turns by more than
+    :data:`HOP_TURN`), the tip passed P_fin across a gap (the mouth of a
+    slit): the stretch is still unknown (:func:`split_hops`)."""
+    if np.linalg.norm(last - p_fin) <= hop:
+        return False
+    pts = np.concatenate(pieces)[:-1]
+    m = _reach_back(pts, len(pts) - 1, -1, hop)
+    if m is None:
+        return False
+    return abs(_turn(last - pts[m], np.asarray(p_fin) - last)) > HOP_TURN
+
+
+def _off_line(origin, direction, point) -> float:
+    """Signed distance of ``point`` from the line through ``origin`` along
+    ``direction`` (positive on its left)."""
+    d = np.asarray(direction, float) / np.hypot(*direction)
+    q = np.asarray(point, float) - origin
+    return float(d[0] * q[1] - d[1] * q[0])
+
+
+def _is_hop(pl, k, hop, sign, near) -> bool:
+    """Is the step ``pl[k] -> pl[k + 1]`` (longer than ``hop``) a hop by its
+    turns, or at a polyline's end by its side of the contour's line
+    (:func:`split_hops`)?"""
+    before, after = _reach_back(pl, k, -1, hop), _reach_back(pl, k + 1, 1, hop)
+    if before is None and after is None:
+        return False  # a lone step: no contour slid along on either side
+    step = pl[k + 1] - pl[k]
+    if before is None:  # concave: the free side is left of a line, material right
+        return sign * _off_line(pl[k + 1], pl[after] - pl[k + 1], pl[k]) > near
+    if after is None:
+        return sign * _off_line(pl[k], pl[k] - pl[before], pl[k + 1]) > near
+    return max(sign * _turn(pl[k] - pl[before], step),
+               sign * _turn(step, pl[after] - pl[k + 1])) > HOP_TURN
+
+
+def split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
+                appended=False, jump=np.inf):
+    """W1 is contour the tip slid along. Cut the traced polylines (in trace
+    order; ``sign`` +1 when the material lies on their right, -1 on their
+    left) at a step longer than the trace's sampling step ``hop`` (eps / 4,
+    :attr:`~core2d.resolution.Resolution.hop`, + the sensor's jitter) that turns concave by
+    more than :data:`HOP_TURN` at either end, and register the stretch
+    between its two contacts as an unknown area (rule ``"hop"``). The turns
+    are read over at least ``hop`` of contour on either side
+    (:func:`_reach_back`).
+
+    Why (issue 17, the slender wedges): the controller takes a contact that
+    moves up to eps / 2 in one micro-step as continuous (the same-point
+    radius), so the tip sliding on one wall of a slit narrower than that can
+    hop over the slit's mouth onto the next contour; the wedge behind the
+    hop, however deep, was recorded as traced and never probed nor
+    approximated. The paper counts as traced only what the tip slid along
+    (W1, §3.1); a discontinuous move of the contact point is Case 2 of
+    §4.3.2, whose stretch (P_1st, P_2nd) is registered by the rule of
+    §4.3.3. Its Dist(A, B) < eps makes it W2 at once (§3.1: approximated by
+    the chord; no motion spent), a wider one goes through Fig. 16 like any
+    other area. A long step that turns convex at both ends is the chord of
+    a convex corner (the controller's ``_passes``), a straight one a fast
+    slide along a wall: nothing can hide behind them, and they stay W1.
+    A long step at an end of a polyline, where the contour slid along is
+    readable on one side only, is read against that side's line: a hop when
+    its other contact lies on the free side of the line by more than
+    ``near`` (2 tol, the contact noise; :func:`_off_line`). That is the tip
+    of a trace in a slit narrower than eps / 2 stepping from one wall onto
+    the other (both within the same-point radius) with the slit's bottom
+    behind the step: the walls are nearly parallel, so the turn is small,
+    but the step's contact lies a slit's width off the wall's line. A fast
+    slide along a wall lies on its line, a convex corner's chord on the
+    material side. Such an area has Dist < eps / 2 and is W2 at once, so
+    nothing is probed for it; the step onto the P_fin that Case 1 appends
+    (``appended``) is left to :func:`hop_to`.
+    The first step of a polyline, from D_i (the local search's contact) to
+    the trace's first contact, longer than ``jump`` (the same-point radius
+    eps/2 + jitter, :attr:`~core2d.resolution.Resolution.tip_zone`) is a
+    hop whatever its turn: the controller reports any later step that long
+    as a jump (Case 2), but the trace starts at whatever the probe touches
+    when it starts, and a noisy D_i at the bottom of a slot 9 eps wide with
+    the probe's body on the slot's corner made a W1 step 100 eps long down
+    the slot (``deep_slot`` z1, sigma 0.3 eps, taxels 0.25 eps, sensor seed
+    1001: precision 0.858); the step's far end lay on the material side of
+    the top face's line, so the end test above took it for a corner's chord.
+    The pieces keep the postures recorded at their polyline's ends (the
+    trace keeps none in between); the new areas carry them too.
+    """
+    out, out_poses = [], []
+    for j, (pl, (pose_first, pose_last)) in enumerate(zip(polylines, poses)):
+        n = np.hypot(*np.diff(pl, axis=0).T)
+        if appended and j == len(polylines) - 1 and len(n):
+            n[-1] = 0.0  # Case 1's step onto P_fin: decided by hop_to
+        start = 0
+        for k in np.flatnonzero(n > hop).tolist():
+            if not (k == 0 and n[0] > jump) and not _is_hop(pl, k, hop, sign, near):
+                continue
+            out.append(pl[start:k + 1])
+            out_poses.append((pose_first, pose_last))
+            new.append(register(pl[k], pose_first, pl[k + 1], pose_last, fin_is_A, parent,
+                                "hop", depth))
+            start = k + 1
+        out.append(pl[start:])
+        out_poses.append((pose_first, pose_last))
+    return out, out_poses

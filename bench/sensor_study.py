@@ -360,7 +360,7 @@ def main(argv=None) -> int:
     if args.chart is not None:
         from bench.sensor_study_chart import chart
 
-        chart(summary, args.chart)
+        chart(summary, args.chart, coverage_target)
     print(markdown(summary))
     print()
     print(verdicts(rows))

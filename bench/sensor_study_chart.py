@@ -6,15 +6,14 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.sensor_study import coverage_target
-
 __all__ = ["chart"]
 
 
-def chart(summary, path: Path) -> None:
+def chart(summary, path: Path, coverage_target) -> None:
     """Per group (columns): motions over the noiseless run (total and worst
     slice) with the budget hits written above, and reachable coverage within
-    eps/2 + 2 sigma (total and worst slice), per sensor level."""
+    eps/2 + 2 sigma (total and worst slice), per sensor level.
+    ``coverage_target(noise, taxel)`` gives a level's target (dotted) or None."""
     from recon3d.viz import libs
 
     plt = libs.pyplot()

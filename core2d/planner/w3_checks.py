@@ -4,21 +4,17 @@ and it closes a loop of recorded contour around material (:func:`closes_loop`).
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.regions import near_probe
 
-if TYPE_CHECKING:  # the planner state; typing only
-    from core2d.planner.run import Exploration
-
 __all__ = ["holds_lid", "closes_loop"]
 
 
-def holds_lid(run: Exploration, area) -> bool:
-    """Can the probe hold the lid as a posture? "A W3 lid is a posture the
+def holds_lid(run, area) -> bool:
+    """Can the probe hold the lid as a posture (``run`` an
+    :class:`~core2d.planner.run.Exploration`)? "A W3 lid is a posture the
     probe actually held": the single probe detection of Fig. 6, made on
     purpose. The probe is inserted from F along the lid's line (shifted tol
     into V_i), once from beyond each end; the lid is held when the tip

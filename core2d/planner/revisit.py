@@ -85,6 +85,7 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import covered
+from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.w3_checks import closes_loop, holds_lid
@@ -269,7 +270,11 @@ def revisit_one(run: Exploration, area):
         plan = passes(back, area.b, area.a) if back else []
     ends_only, escaped = True, False
     blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
-    for point, direction in plan:
+    plan, k = [(p, d, None) for p, d in plan], 0
+    aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
+    while k < len(plan):
+        point, direction, shift = plan[k]
+        k += 1
         if not run.budget():
             return run.deferred.append(area)  # the budget ran out: still unknown
         if blockers.stops(point, direction):  # would meet contour a pass stopped at
@@ -292,6 +297,9 @@ def revisit_one(run: Exploration, area):
                       and steep_enough(run.res, area.a, area.b, direction))
         if c is not None and not _near_end(run, area, c):
             blockers.add(area.a, area.b, pose_c.joint, c)
+        again = None if c is None else aim.landed(point, direction, c, shift)
+        if again is not None:  # a grazing pass landed off the middle: its line shifted
+            plan.insert(k, again)
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "

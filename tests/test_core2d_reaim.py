@@ -76,6 +76,15 @@ def test_no_correction_off_the_lids_line_or_in_the_middle():
     assert aim.spent == 0
 
 
+def test_no_shift_beyond_a_readings_reach():
+    """A steep pass (30 degrees) that landed 1.4 lid lengths on would need
+    a shift of 1.4 eps, more than the same-contact radius: not this wall."""
+    a, b = np.zeros(2), np.array([2.0, 0.0])
+    d = np.array([np.cos(np.pi / 6), np.sin(np.pi / 6)])
+    assert Aim(FINE, a, b).landed((1.0, 0.0), d, (3.8, 0.0)) is None
+    assert Aim(FINE, a, b).landed((1.0, 0.0), d, (1.6, 0.0)) is not None
+
+
 def test_at_most_max_reaim_passes_per_lid():
     a, b = np.zeros(2), np.array([2.0, 0.0])
     d = np.array([1.0, 0.01])

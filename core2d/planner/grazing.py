@@ -14,8 +14,9 @@ takes for a free line -- on contour in front of the lid. Measured on
 ``comb`` z4 at sigma = 0.1 eps (budget 20,000, all used): 8,484 motions in
 lids that ended unknown after their revisit passes (:mod:`~core2d.planner.revisit`,
 up to 54 passes each), and 2,237 of those lids' passes stopped in front of
-the lid, two eps or more from it. Three rules read what such passes say;
-all are off with a perfect sensor (the paper's flow is unchanged):
+the lid, two eps or more from it. Three rules read what such passes say,
+and :class:`~core2d.planner.reaim.Aim` aims a pass again from where it
+landed; all are off with a perfect sensor (the paper's flow is unchanged):
 
 * :func:`beyond_ends` (jitter > 0) -- a contact on the lid's line (within
   :attr:`~core2d.resolution.Resolution.jitter`) but beyond A_i or B_i is the

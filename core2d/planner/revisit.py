@@ -34,7 +34,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
    pass stopped in front of the lid, and contacts on the lid's line beyond
-   its ends.
+   its ends; and a pass that landed on the lid's line off its middle is
+   made again along its line shifted sideways to land at the middle
+   (:class:`~core2d.planner.reaim.Aim`, a fine noisy sensor only).
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`~core2d.planner.w3_checks.holds_lid`: a W3 lid never passes
    through the solid) and if it closes

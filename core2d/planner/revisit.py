@@ -36,7 +36,8 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    pass stopped in front of the lid, and contacts on the lid's line beyond
    its ends; and a pass that landed on the lid's line off its middle is
    made again along its line shifted sideways to land at the middle
-   (:class:`~core2d.planner.reaim.Aim`, a fine noisy sensor only).
+   (:class:`~core2d.planner.reaim.Aim`, a noisy sensor whose jitter is
+   at most 2 eps).
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`~core2d.planner.w3_checks.holds_lid`: a W3 lid never passes
    through the solid) and if it closes

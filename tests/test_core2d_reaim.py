@@ -79,6 +79,12 @@ def test_no_correction_off_the_lids_line_or_in_the_middle():
     assert aim.spent == 0
 
 
+def test_no_first_guess_for_a_pass_along_the_lid():
+    """A pass parallel to the lid gives no slope to start the secant from."""
+    a, b = np.zeros(2), np.array([2.0, 0.0])
+    assert Aim(FINE, a, b).landed((1.0, 0.0), np.array([1.0, 0.0]), (1.9, 0.02)) is None
+
+
 def test_no_shift_beyond_a_readings_reach():
     """A steep pass (30 degrees) that landed 1.4 lid lengths on would need
     a shift of 1.4 eps, more than the same-contact radius: not this wall."""

@@ -118,8 +118,8 @@ class Aim:
         self.landings.append((float(shift), u))
         normal = np.array([-self.base[1][1], self.base[1][0]])
         if len(self.landings) == 1:  # the lid's direction for the wall's
-            along = float(cross(self.base[1], normal)) / float(cross(self.base[1], ab / length))
-            slope = along / length if np.isfinite(along) else 0.0
+            sine = float(cross(self.base[1], ab / length))
+            slope = float(cross(self.base[1], normal)) / sine / length if sine != 0.0 else 0.0
         else:
             (s0, u0), (s1, u1) = self.landings[-2:]
             slope = (u1 - u0) / (s1 - s0) if s1 != s0 else 0.0

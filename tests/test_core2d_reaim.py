@@ -1,8 +1,9 @@
 """Grazing passes aimed again from where they landed
 (:class:`core2d.planner.reaim.Aim`): the secant on the line's sideways shift,
 checked on straight walls whose landings are computed here by intersecting
-lines, the cases where it must not act, and the slots of the ``comb``
-outlines at sigma 0.1 eps (exact backend, eps 1)."""
+lines, the cases where it must not act, the slots of the ``comb`` outlines
+at sigma 0.1 eps, and the ``star`` and ``undercut`` outlines at sigma 0.3 eps
+with taxels 0.25 eps (exact backend, eps 1)."""
 from __future__ import annotations
 
 import numpy as np
@@ -104,12 +105,17 @@ def test_at_most_max_reaim_passes_per_lid():
     assert n == MAX_REAIM
 
 
-def _outline_run(kind, seed, sensor_seed):
+def _outline(kind, seed):
+    """A seeded outline of ``tests/outlines.py`` (eps 1), its contact model and workspace."""
     loops = outline(kind, np.random.default_rng(seed), 1.0)
     pts = np.concatenate(loops)
     ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
-    res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, sensor_seed))
+    return loops, ExactContact(loops), ws
+
+
+def _outline_run(kind, seed, sensor_seed):
+    loops, contact, ws = _outline(kind, seed)
+    res = sense_slice(contact, ws, 1.0, sensor=SensorModel.of_eps(1.0, 0.1, 0.0, sensor_seed))
     return res, sensor_metrics(loops, res, 1.0, 0.1)
 
 
@@ -128,10 +134,7 @@ def test_slots_of_the_comb_outlines_covered_at_sigma_01(seed):
 
 
 def _coarse_run(kind, seed, sensor_seed):
-    loops = outline(kind, np.random.default_rng(seed), 1.0)
-    pts = np.concatenate(loops)
-    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
-    contact = ExactContact(loops)
+    loops, contact, ws = _outline(kind, seed)
     res = sense_slice(contact, ws, 1.0, sensor=SensorModel.of_eps(1.0, 0.3, 0.25, sensor_seed))
     return loops, contact, ws, res
 

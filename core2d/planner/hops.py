@@ -86,7 +86,7 @@ def split_hops(polylines, poses, hop, sign, new, fin_is_A, parent, depth, near,
     are read over at least ``hop`` of contour on either side
     (:func:`_reach_back`).
 
-    Why (issue 17, the slender wedges): the controller takes a contact that
+    Why (the slender wedges): the controller takes a contact that
     moves up to eps / 2 in one micro-step as continuous (the same-point
     radius), so the tip sliding on one wall of a slit narrower than that can
     hop over the slit's mouth onto the next contour; the wedge behind the

@@ -239,7 +239,8 @@ def _slices_png(sensed: MeshRun) -> bytes:
 
 def _side_by_side(first: Callable[[], Any], second: Callable[[], Any]) -> tuple[Any, Any]:
     """``(first(), second())`` with ``first`` in a forked child (:class:`recon3d.io.side.Side`)
-    while this process runs ``second``: the scores' two VTK distance calls on two cores."""
+    while this process runs ``second``: the two halves of each family's field (the
+    reconstruction) and the scores' two distance calls, on two cores."""
     if not can_fork():
         return first(), second()
     side = Side(first)
@@ -295,7 +296,7 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
             side = Side(_classified_arrays, mesh, sensed)
         if stage is not None:
             stage("reconstructing")
-        recon = reconstruct(sensed, regions=regions.for_run(sensed))
+        recon = reconstruct(sensed, regions=regions.for_run(sensed), pair=_side_by_side)
         if stage is not None:
             stage("scoring")
         gt = None

@@ -28,7 +28,9 @@ last layers are padding (outside) so that the zero level set is closed.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 import shapely
@@ -49,6 +51,9 @@ ROUTES = ("warp", "linear")
 #: smallest |value| kept in the field, times the step: keeps level-set
 #: vertices apart from grid nodes (no zero-length edges)
 _MIN_VALUE = 1e-3
+
+#: a family of at least this many slices splits its work in two halves (``pair``)
+_SPLIT = 4
 
 
 @dataclass(frozen=True)
@@ -194,54 +199,50 @@ def _neighbours_say(seen: list, f: list, f0: list, drops=()) -> list:
     return out
 
 
-def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bool = False,
-                  warp: WarpSettings = WarpSettings(),
-                  trust: ConfidenceSettings = ConfidenceSettings(),
-                  caps: CapSettings = CapSettings()
-                  ) -> tuple[np.ndarray, np.ndarray | None]:
-    """The field of a family and, optionally, its confidence (see module doc).
+def _serial(first, second):
+    """``(first(), second())`` in this process: :func:`family_volume`'s default ``pair``."""
+    return first(), second()
 
-    Parameters
-    ----------
-    regions : list of SliceRegion -- one per slice, ascending heights.
-    grid : FamilyGrid
-    route : {'warp', 'linear'} -- aligned blend (:mod:`recon3d.surface.warp`) or the plain
-        shape-based interpolation.
-    confidence : bool -- also return the confidence (:mod:`recon3d.surface.confidence`).
-    caps : CapSettings -- with the aligned blend, space a slice only closed (unknown chords,
-        bridges) ends at that slice (:mod:`recon3d.surface.caps`).
 
-    Returns
-    -------
-    vol : (layers, ny, nx) float32 -- the field; on a slice layer the slice's own field.
-    conf : (layers, ny, nx) float32 or None -- in (0, 1].
-    """
-    if route not in ROUTES:
-        raise ValueError(f"unknown between-slice route {route!r}; expected one of {ROUTES}")
+def _slice_fields(regions, grid: FamilyGrid, lo: int, hi: int, warped: bool,
+                  confidence: bool, trust: ConfidenceSettings, caps: CapSettings):
+    """Slices ``lo .. hi - 1``: their own fields (ny, nx), their seen maps (or None) and the
+    caps rule's decision for the gaps ``lo .. hi - 2`` between them (None where not warped)."""
     nx, ny = grid.shape
-    f = [slice_sdf(r, grid).reshape(ny, nx) for r in regions]
-    seen = [seen_map(r, fi, grid, trust) for r, fi in zip(regions, f)] if confidence else None
-    vol = np.full((grid.layers, ny, nx), -grid.truncation, dtype=np.float32)
-    conf = np.full(vol.shape, 1e-3, dtype=np.float32) if confidence else None
+    f = [slice_sdf(r, grid).reshape(ny, nx) for r in regions[lo:hi]]
+    seen = ([seen_map(r, fi, grid, trust) for r, fi in zip(regions[lo:hi], f)]
+            if confidence else None)
+    gaps = np.diff(grid.heights)
+    capped = []
+    for i in range(lo, hi - 1):
+        t = _clip(float(gaps[i]), grid)
+        capped.append(cap_unsensed(np.clip(f[i - lo], -t, t), np.clip(f[i + 1 - lo], -t, t),
+                                   regions[i], regions[i + 1], grid, float(gaps[i]), caps)
+                      if warped else None)
+    return f, seen, capped
+
+
+def _clip(gap: float, grid: FamilyGrid) -> np.float32:
+    """A gap's truncation of the fields it blends: steps stay sharp."""
+    return np.float32(max(gap, 2 * grid.step))
+
+
+def _gap_layers(f: list, capped: list, seen, grid: FamilyGrid, lo: int, hi: int, warped: bool,
+                warp: WarpSettings, trust: ConfidenceSettings, caps: CapSettings):
+    """The layers of gaps ``lo .. hi - 1`` (each gap ``i`` from slice ``i``'s layer on, that
+    layer included): ((hi - lo) k, ny, nx) float32 field and confidence (None without
+    ``seen``). A gap's blend bends with its neighbours' moves, so those of gaps ``lo - 1``
+    and ``hi`` are made too."""
+    nx, ny = grid.shape
     w = np.arange(grid.k, dtype=np.float32) / grid.k
     w3 = w[:, None, None]
     gaps = np.diff(grid.heights)
-    clip = [np.float32(max(g, 2 * grid.step)) for g in gaps]  # per gap: steps stay sharp
-    warped = route == "warp" and grid.k > 1
-    capped = [cap_unsensed(np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t), regions[i],
-                           regions[i + 1], grid, float(gaps[i]), caps) if warped else None
-              for i, t in enumerate(clip)]
-    drops = []
-    if warped:  # a fill closed on a run of slices ends at the run's empty neighbours
-        f0 = f
-        f, drops = run_caps(f, capped, regions, grid, clip, caps)
-        if caps.own:
-            f = own_caps(f, capped, grid.step)
-        if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
-            seen = _neighbours_say(seen, f, f0, drops)  # showed empty (solid), they say
+    clip = [_clip(float(g), grid) for g in gaps]
+    vol = np.empty(((hi - lo) * grid.k, ny, nx), dtype=np.float32)
+    conf = np.empty(vol.shape, dtype=np.float32) if seen is not None else None
     held, moves = [None] * (len(f) - 1), [None] * (len(f) - 1)
-    for i in range(len(f) - 1) if warped else ():  # every gap's move, then the blends
-        t, cap = clip[i], capped[i]
+    for i in range(max(lo - 1, 0), min(hi + 1, len(f) - 1)) if warped else ():
+        t, cap = clip[i], capped[i]  # every gap's move the blends need, then the blends
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
         held[i] = gap_steps(fa, fb, np.clip(f[i - 1], -t, t) if i > 0 else None,
                             np.clip(f[i + 2], -t, t) if i + 2 < len(f) else None,
@@ -252,8 +253,8 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
             skip = tuple(still if s is None else s | still for s in skip)
         end = warp if 0 < i < len(f) - 2 else replace(warp, reach=warp.end_reach)
         moves[i] = gap_displacement(fa, fb, grid, float(gaps[i]), end, *skip)
-    for i in range(len(f) - 1):
-        a = grid.slice_layer(i)
+    for i in range(lo, hi):
+        a = (i - lo) * grid.k
         gap, t, cap = float(gaps[i]), clip[i], capped[i]
         fa, fb = np.clip(f[i], -t, t), np.clip(f[i + 1], -t, t)
         if warped:
@@ -272,7 +273,7 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
             va, vb, move = np.broadcast_to(fa, val.shape), np.broadcast_to(fb, val.shape), None
         vol[a:a + grid.k] = val
         vol[a] = f[i]
-        if confidence:
+        if conf is not None:
             ag = agreement(va, vb, grid.step)
             if move is not None:  # an alignment that moves far is trusted less
                 plaus = np.exp(-0.5 * (move / gap) ** 2)
@@ -281,6 +282,71 @@ def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bo
                 ag = cone(ag, va, vb, w3, gap)
             conf[a:a + grid.k] = between_confidence(seen[i], seen[i + 1], w3, ag, grid, gap,
                                                     trust)
+    return vol, conf
+
+
+def family_volume(regions, grid: FamilyGrid, route: str = "warp", confidence: bool = False,
+                  warp: WarpSettings = WarpSettings(),
+                  trust: ConfidenceSettings = ConfidenceSettings(),
+                  caps: CapSettings = CapSettings(), pair: Callable | None = None
+                  ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The field of a family and, optionally, its confidence (see module doc).
+
+    Parameters
+    ----------
+    regions : list of SliceRegion -- one per slice, ascending heights.
+    grid : FamilyGrid
+    route : {'warp', 'linear'} -- aligned blend (:mod:`recon3d.surface.warp`) or the plain
+        shape-based interpolation.
+    confidence : bool -- also return the confidence (:mod:`recon3d.surface.confidence`).
+    caps : CapSettings -- with the aligned blend, space a slice only closed (unknown chords,
+        bridges) ends at that slice (:mod:`recon3d.surface.caps`).
+    pair : callable(first, second) -> (first(), second()), optional -- how two halves of
+        the work run: the slices' own fields and caps, then the gaps' layers, each split
+        in two at the middle slice (a slice's or a gap's work depends on no other's, so
+        the field is the same however they run; e.g. one half in a forked child). None:
+        one after the other, here.
+
+    Returns
+    -------
+    vol : (layers, ny, nx) float32 -- the field; on a slice layer the slice's own field.
+    conf : (layers, ny, nx) float32 or None -- in (0, 1].
+    """
+    if route not in ROUTES:
+        raise ValueError(f"unknown between-slice route {route!r}; expected one of {ROUTES}")
+    pair = _serial if pair is None else pair
+    nx, ny = grid.shape
+    n, warped = len(regions), route == "warp" and grid.k > 1
+    half = n // 2 if n >= _SPLIT else None
+    fields = partial(_slice_fields, regions, grid, warped=warped, confidence=confidence,
+                     trust=trust, caps=caps)
+    if half is None:
+        f, seen, capped = fields(0, n)
+    else:  # slice ``half`` on both sides: the gap below it needs it
+        low, high = pair(lambda: fields(0, half + 1), lambda: fields(half, n))
+        f, capped = low[0][:half] + high[0], low[2] + high[2]
+        seen = low[1][:half] + high[1] if confidence else None
+    vol = np.full((grid.layers, ny, nx), -grid.truncation, dtype=np.float32)
+    conf = np.full(vol.shape, 1e-3, dtype=np.float32) if confidence else None
+    clip = [_clip(float(g), grid) for g in np.diff(grid.heights)]
+    drops = []
+    if warped:  # a fill closed on a run of slices ends at the run's empty neighbours
+        f0 = f
+        f, drops = run_caps(f, capped, regions, grid, clip, caps)
+        if caps.own:
+            f = own_caps(f, capped, grid.step)
+        if confidence and caps.own_trust:  # where a slice drops (fills) what both neighbours
+            seen = _neighbours_say(seen, f, f0, drops)  # showed empty (solid), they say
+    layers = partial(_gap_layers, f, capped, seen, grid, warped=warped, warp=warp, trust=trust,
+                     caps=caps)
+    parts = ([layers(0, n - 1)] if half is None else
+             pair(lambda: layers(0, half), lambda: layers(half, n - 1)))
+    a = grid.slice_layer(0)
+    for v, c in parts:
+        vol[a:a + len(v)] = v
+        if confidence:
+            conf[a:a + len(v)] = c
+        a += len(v)
     last = grid.slice_layer(len(f) - 1)
     vol[last] = f[-1]
     if confidence:

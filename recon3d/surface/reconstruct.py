@@ -6,6 +6,7 @@ scores are :mod:`recon3d.score`'s.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import trimesh
@@ -49,7 +50,8 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
                 blend: FusionSettings = FusionSettings(),
                 caps: CapSettings = CapSettings(),
                 regions: list[list[SliceRegion]] | None = None,
-                warp: WarpSettings = WarpSettings()) -> Reconstruction:
+                warp: WarpSettings = WarpSettings(), pair: Callable | None = None
+                ) -> Reconstruction:
     """Close, stack and fuse the slices of a :class:`recon3d.records.MeshRun`.
 
     Parameters
@@ -66,6 +68,9 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
         :func:`~recon3d.surface.closure.result_region` (snap ``2 * run.tol``), per family,
         already computed (e.g. as the slices were sensed); None: computed here.
     warp : WarpSettings -- the aligned blend (:mod:`recon3d.surface.warp`).
+    pair : callable(first, second) -> (first(), second()), optional -- runs two halves of
+        each family's field (:func:`recon3d.surface.field.family_volume`; the same field
+        however they run), e.g. one in a forked child; None: here, one after the other.
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
@@ -80,7 +85,7 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
             notes.append(f"family {fam.label}: a surface needs at least 2 slices")
             continue
         solid = family_solid(regs, [s.slice.plane for s in fam.slices], step, route, keep,
-                             trust, caps, warp)
+                             trust, caps, warp, pair)
         if solid is None:
             notes.append(f"family {fam.label}: nothing sensed, no surface")
         solids.append(solid)

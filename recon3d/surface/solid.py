@@ -26,6 +26,7 @@ ids.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import manifold3d
@@ -115,7 +116,8 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
                  step: float, route: str = "warp", keep_field: bool = False,
                  trust: ConfidenceSettings = ConfidenceSettings(),
                  caps: CapSettings = CapSettings(),
-                 warp: WarpSettings = WarpSettings()) -> FamilySolid | None:
+                 warp: WarpSettings = WarpSettings(), pair: Callable | None = None
+                 ) -> FamilySolid | None:
     """Level set of one family's field (see module doc).
 
     Parameters
@@ -129,6 +131,8 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     trust : ConfidenceSettings -- parameters of that confidence.
     caps : CapSettings -- unsensed space ends at its slice (:mod:`recon3d.surface.caps`).
     warp : WarpSettings -- the aligned blend (:mod:`recon3d.surface.warp`).
+    pair : callable(first, second), optional -- how the field's two halves run
+        (:func:`recon3d.surface.field.family_volume`); None: here, one after the other.
 
     Returns
     -------
@@ -143,7 +147,7 @@ def family_solid(regions: list[SliceRegion], planes: list[slicer.SlicePlane],
     heights = np.array([p.offset for p in planes])
     grid = family_grid(regions, heights, step)
     vol, conf = family_volume(regions, grid, route, confidence=keep_field, warp=warp,
-                              trust=trust, caps=caps)
+                              trust=trust, caps=caps, pair=pair)
     img = pv.ImageData(dimensions=(grid.shape[0], grid.shape[1], grid.layers),
                        spacing=(step, step, 1.0), origin=(grid.x0, grid.y0, 0.0))
     img.point_data["f"] = vol.ravel()

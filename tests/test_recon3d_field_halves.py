@@ -114,3 +114,10 @@ def test_a_run_makes_its_fields_halves_beside_itself(monkeypatch):
     mesh = recon3d.api.load_input("fig17_pocket", False)[0]
     recon3d.run("fig17_pocket", slices=4, eps=diagonal(mesh) / 60, jobs=1)
     assert sum(n.startswith("family_volume") for n in names) == 2
+
+
+def test_the_plain_route_splits_the_same():
+    regions, grid = _u_prism()
+    vol, _ = family_volume(regions, grid, route="linear")
+    vol2, _ = family_volume(regions, grid, route="linear", pair=_forked)
+    assert np.array_equal(vol, vol2)

@@ -7,6 +7,10 @@ run of chord-closed slices straddles the split (caps and run caps act there) and
 sensed scene (bends, steps), with the confidence too, the halves run in a forked child or
 in reverse order.
 """
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
@@ -121,3 +125,22 @@ def test_the_plain_route_splits_the_same():
     vol, _ = family_volume(regions, grid, route="linear")
     vol2, _ = family_volume(regions, grid, route="linear", pair=_forked)
     assert np.array_equal(vol, vol2)
+
+
+def test_the_halves_in_a_forked_child_of_a_fresh_process():
+    """The halves through a real fork and pipe, in a fresh interpreter: a test process that
+    has made a render window (an earlier pyvista test) may not fork, and skips the forked
+    cases above."""
+    code = (
+        "import sys, numpy as np; sys.path.insert(0, sys.argv[1]);"
+        "import test_recon3d_field_halves as t; import recon3d.api as api;"
+        "from recon3d.surface.field import family_volume;"
+        "assert api.can_fork(); regions, grid = t._u_prism();"
+        "ok = all(np.array_equal(x, y) for c in (False, True) for x, y in zip("
+        "family_volume(regions, grid, confidence=c),"
+        "family_volume(regions, grid, confidence=c, pair=api._side_by_side)));"
+        "sys.exit(0 if ok else 1)")
+    here = str(Path(__file__).resolve().parent)
+    done = subprocess.run([sys.executable, "-c", code, here], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]

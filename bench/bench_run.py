@@ -23,7 +23,8 @@ compiled kernels are loaded from their cache, not built, in the timed runs.
 
     python -m bench.bench_run [--quick] [--before REV] [--repeat 3] [--scenes a,b]
 
-``--quick``: three scenes, one repetition, the large mesh at 16 slices.
+``--quick``: three scenes, one repetition, the large mesh at 16 slices. The large mesh runs
+``--repeat`` times too (alternating with ``--before``; medians, and the pairwise ratio).
 """
 from __future__ import annotations
 
@@ -186,13 +187,21 @@ def main(argv=None) -> int:
         if large_n and (SHARED / LARGE).is_file():
             path, faces = subdivided(LARGE, tmp)
             large = ["--slices", str(large_n), "--jobs", "2", "--no-png"]
-            for tag, root in trees:
-                w, s, c = run_once(root, str(path), tmp / f"large-{tag.split()[0]}", large)
+            got = {tag: [] for tag, _ in trees}
+            for r in range(repeat):  # alternating, as the scenes
+                for tag, root in (trees if r % 2 == 0 else trees[::-1]):
+                    got[tag].append(run_once(root, str(path), tmp / f"large-{tag.split()[0]}",
+                                             large))
+            for tag, _ in trees:
+                w, s, c = (_median([x[i] for x in got[tag]]) for i in range(3))
                 print(f"{LARGE} x16 ({faces:,} faces), {large_n} slices, --jobs 2 --no-png "
-                      f"({tag}): {w:.1f} s wall, sensing {s:.1f} s, CPU {c:.1f} s (target <= "
-                      f"{TARGETS['large']:.0f} s at 64: {_flag(w <= TARGETS['large'])})",
+                      f"({tag}, median of {repeat}): {w:.1f} s wall, sensing {s:.1f} s, CPU "
+                      f"{c:.1f} s (target <= {TARGETS['large']:.0f} s at 64: "
+                      f"{_flag(w <= TARGETS['large']) if large_n == 64 else 'not at 64'})",
                       flush=True)
             if args.before:
+                pairs = [a[0] / b[0] for a, b in zip(got["after"], got[trees[0][0]])]
+                print(f"large mesh wall after / before, run by run: median {_median(pairs):.3f}")
                 print(f"large mesh outputs: {compare(tmp / 'large-before', tmp / 'large-after')}")
         elif large_n:
             print(f"large mesh skipped: {SHARED / LARGE} not found")

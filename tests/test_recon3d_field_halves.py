@@ -4,8 +4,9 @@ The slices' own fields and caps, then the gaps' layers, are split at the middle 
 may run in a forked child beside this process (``recon3d.api`` does so). The field must be
 the very field of one process doing all of it: compared ``==`` on a constructed case whose
 run of chord-closed slices straddles the split (caps and run caps act there) and on a
-sensed scene (bends, steps), with the confidence too, the halves run in a forked child or
-in reverse order.
+sensed scene (bends, steps), with the confidence too, the halves run in reverse order here
+and in a forked child of a fresh interpreter (a test worker that has made a render window
+may not fork).
 """
 import subprocess
 import sys
@@ -40,8 +41,7 @@ def _u_prism():
     return regions, family_grid(regions, heights, 0.5)
 
 
-@pytest.fixture(scope="module")
-def sensed():
+def _sensed():
     """``fig18_overhangs``, 8 z-slices at eps = diagonal / 60: the regions the run closed and
     the grid of its family."""
     mesh = recon3d.api.load_input("fig18_overhangs", False)[0]
@@ -51,25 +51,23 @@ def sensed():
     return regions, family_grid(regions, heights, res.recon.step)
 
 
+@pytest.fixture(scope="module")
+def sensed():
+    return _sensed()
+
+
 def _reversed(first, second):
     b = second()
     return first(), b
 
 
-def _forked(first, second):
-    if not api.can_fork():  # pragma: no cover - POSIX test machines fork
-        pytest.skip("this process cannot fork a child")
-    return api._side_by_side(first, second)
-
-
-@pytest.mark.parametrize("pair", [_forked, _reversed], ids=["forked child", "reversed"])
 @pytest.mark.parametrize("confidence", [False, True])
 @pytest.mark.parametrize("case", ["u_prism", "fig18_overhangs"])
-def test_the_halves_make_the_field_of_one_process(case, confidence, pair, request):
+def test_the_halves_in_either_order_make_the_field_of_one_process(case, confidence, request):
     regions, grid = _u_prism() if case == "u_prism" else request.getfixturevalue("sensed")
     assert len(regions) >= field._SPLIT
     vol, conf = family_volume(regions, grid, confidence=confidence)
-    vol2, conf2 = family_volume(regions, grid, confidence=confidence, pair=pair)
+    vol2, conf2 = family_volume(regions, grid, confidence=confidence, pair=_reversed)
     assert np.array_equal(vol, vol2)
     assert (conf is None and conf2 is None) or np.array_equal(conf, conf2)
 
@@ -123,22 +121,25 @@ def test_a_run_makes_its_fields_halves_beside_itself(monkeypatch):
 def test_the_plain_route_splits_the_same():
     regions, grid = _u_prism()
     vol, _ = family_volume(regions, grid, route="linear")
-    vol2, _ = family_volume(regions, grid, route="linear", pair=_forked)
+    vol2, _ = family_volume(regions, grid, route="linear", pair=_reversed)
     assert np.array_equal(vol, vol2)
 
 
-def test_the_halves_in_a_forked_child_of_a_fresh_process():
-    """The halves through a real fork and pipe, in a fresh interpreter: a test process that
-    has made a render window (an earlier pyvista test) may not fork, and skips the forked
-    cases above."""
+def test_the_halves_in_a_forked_child_make_the_field_of_one_process():
+    """The first half in a forked child (``recon3d.api._side_by_side``, as a run does), its
+    result back through the pipe: both cases, with and without the confidence, and the
+    plain route. In a fresh interpreter: a test process that has made a render window (an
+    earlier pyvista test in the same worker) may not fork."""
     code = (
-        "import sys, numpy as np; sys.path.insert(0, sys.argv[1]);"
+        "import sys; sys.path.insert(0, sys.argv[1]); import recon3d; import numpy as np;"
         "import test_recon3d_field_halves as t; import recon3d.api as api;"
         "from recon3d.surface.field import family_volume;"
-        "assert api.can_fork(); regions, grid = t._u_prism();"
-        "ok = all(np.array_equal(x, y) for c in (False, True) for x, y in zip("
-        "family_volume(regions, grid, confidence=c),"
-        "family_volume(regions, grid, confidence=c, pair=api._side_by_side)));"
+        "assert api.can_fork();"
+        "runs = [(c, r, k) for c in (t._u_prism(), t._sensed())"
+        " for r, k in (('warp', False), ('warp', True), ('linear', False))];"
+        "ok = all(np.array_equal(x, y) for (rg, g), r, k in runs for x, y in zip("
+        "family_volume(rg, g, route=r, confidence=k)[:1 + k],"
+        "family_volume(rg, g, route=r, confidence=k, pair=api._side_by_side)[:1 + k]));"
         "sys.exit(0 if ok else 1)")
     here = str(Path(__file__).resolve().parent)
     done = subprocess.run([sys.executable, "-c", code, here], capture_output=True, text=True,

@@ -4,8 +4,9 @@ The slices' own fields and caps, then the gaps' layers, are split at the middle 
 may run in a forked child beside this process (``recon3d.api`` does so). The field must be
 the very field of one process doing all of it: compared ``==`` on a constructed case whose
 run of chord-closed slices straddles the split (caps and run caps act there) and on a
-sensed scene (bends, steps), with the confidence too, the halves run in reverse order here
-and in a forked child of a fresh interpreter (a test worker that has made a render window
+sensed scene (bends, steps), with the confidence too, against the field made in one piece
+(no split), the halves run in order, in reverse order and in a forked child of a fresh
+interpreter (a test worker that has made a render window
 may not fork).
 """
 import subprocess
@@ -61,13 +62,23 @@ def _reversed(first, second):
     return first(), b
 
 
+def _whole(regions, grid, **kw):
+    """The field made in one piece: no split however many slices (the reference)."""
+    split, field._SPLIT = field._SPLIT, 10 ** 9
+    try:
+        return family_volume(regions, grid, **kw)
+    finally:
+        field._SPLIT = split
+
+
+@pytest.mark.parametrize("pair", [None, _reversed], ids=["in order", "reversed"])
 @pytest.mark.parametrize("confidence", [False, True])
 @pytest.mark.parametrize("case", ["u_prism", "fig18_overhangs"])
-def test_the_halves_in_either_order_make_the_field_of_one_process(case, confidence, request):
+def test_the_halves_make_the_field_of_one_piece(case, confidence, pair, request):
     regions, grid = _u_prism() if case == "u_prism" else request.getfixturevalue("sensed")
     assert len(regions) >= field._SPLIT
-    vol, conf = family_volume(regions, grid, confidence=confidence)
-    vol2, conf2 = family_volume(regions, grid, confidence=confidence, pair=_reversed)
+    vol, conf = _whole(regions, grid, confidence=confidence)
+    vol2, conf2 = family_volume(regions, grid, confidence=confidence, pair=pair)
     assert np.array_equal(vol, vol2)
     assert (conf is None and conf2 is None) or np.array_equal(conf, conf2)
 
@@ -120,15 +131,15 @@ def test_a_run_makes_its_fields_halves_beside_itself(monkeypatch):
 
 def test_the_plain_route_splits_the_same():
     regions, grid = _u_prism()
-    vol, _ = family_volume(regions, grid, route="linear")
+    vol, _ = _whole(regions, grid, route="linear")
     vol2, _ = family_volume(regions, grid, route="linear", pair=_reversed)
     assert np.array_equal(vol, vol2)
 
 
 def test_the_halves_in_a_forked_child_make_the_field_of_one_process():
     """The first half in a forked child (``recon3d.api._side_by_side``, as a run does), its
-    result back through the pipe: both cases, with and without the confidence, and the
-    plain route. In a fresh interpreter: a test process that has made a render window (an
+    result back through the pipe, against the field made in one piece: both cases, with and
+    without the confidence, and the plain route. In a fresh interpreter: a test process that has made a render window (an
     earlier pyvista test in the same worker) may not fork."""
     code = (
         "import sys; sys.path.insert(0, sys.argv[1]); import recon3d; import numpy as np;"
@@ -138,7 +149,7 @@ def test_the_halves_in_a_forked_child_make_the_field_of_one_process():
         "runs = [(c, r, k) for c in (t._u_prism(), t._sensed())"
         " for r, k in (('warp', False), ('warp', True), ('linear', False))];"
         "ok = all(np.array_equal(x, y) for (rg, g), r, k in runs for x, y in zip("
-        "family_volume(rg, g, route=r, confidence=k)[:1 + k],"
+        "t._whole(rg, g, route=r, confidence=k)[:1 + k],"
         "family_volume(rg, g, route=r, confidence=k, pair=api._side_by_side)[:1 + k]));"
         "sys.exit(0 if ok else 1)")
     here = str(Path(__file__).resolve().parent)

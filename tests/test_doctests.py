@@ -28,6 +28,7 @@ MODULES = [
     "core2d.planner.known",
     "core2d.planner.segments",
     "core2d.planner.local_search",
+    "core2d.planner.touched",
     "core2d.planner.mouths",
     "core2d.planner.tip_bound",
     "core2d.truth.reachability",

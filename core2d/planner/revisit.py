@@ -72,6 +72,11 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
      where it crossed, and such passes ending near A_i proved W3 a lid laid
      across a reachable slot 1.5 eps wide (``comb`` outline seed 1, sigma
      0.1 eps, sensor seed 1001: every pass ran within 6 degrees of the lid);
+   * with a noisy sensor, the passes' contacts that were no new contact (on recorded
+     contour, at an ancestor's split, near an end) but touched C_A^B at the lid sample
+     it finely enough -- no two neighbours along the lid, A_i and B_i included, as far
+     apart as eps + jitter, the middle touched -> **W2** along their block means
+     (:mod:`~core2d.planner.touched`): what the refused splits would have made;
    * otherwise -> ``unknown``, reported with the lid in the result.
 
 A pass that touches reachable contour behind the lid farther than eps/2
@@ -91,6 +96,7 @@ from core2d.planner.mouths import covered
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
+from core2d.planner.touched import Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
 from core2d.planner.tracing import reread_pass
 
@@ -275,6 +281,8 @@ def revisit_one(run: Exploration, area):
     blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
     plan, k = [(p, d, None) for p, d in plan], 0
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
+    touches = (Touches(run.res, aim.a, aim.b, lid_end_radius(run.res, area.dist))
+               if lines and applies(run.res) else None)  # a noisy sensor's W2 by touch
     while k < len(plan):
         point, direction, shift = plan[k]
         k += 1
@@ -295,6 +303,8 @@ def revisit_one(run: Exploration, area):
                     Area(c, area.b, pose_c, area.pose_b, area.index, "revisit", d, seen=seen)]
             return run.children(area, kids)
         area.tries += 1
+        if c is not None and touches is not None:
+            touches.add(pose_c.joint, c)
         escaped |= c is None
         ends_only &= (c is not None and _near_end(run, area, c, run.res.sensor_tol)
                       and steep_enough(run.res, area.a, area.b, direction))
@@ -309,6 +319,9 @@ def revisit_one(run: Exploration, area):
                                           "crosses recorded contour")
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
+    if touches is not None and touches.closes():
+        return run.close(area, "W2", note + "; they touched C_A^B along the lid, every "
+                         "neighbour within eps + the sensor's jitter", chain=touches.chain())
     if candidate and ends_only:
         return note + "; each ended at a touched end (resolution eps)"
     run.close(area, "unknown", note)

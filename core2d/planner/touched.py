@@ -1,0 +1,141 @@
+"""A lid the revisit's passes touched along its length (noisy sensor): W2 piece by piece.
+
+With a perfect sensor a revisit pass that meets C_{A_i}^{B_i} farther than eps/2 from
+A_i and B_i splits the area at that contact C (§4.4), and the halves go on until
+Dist < eps makes them W2 (§3.1). With a noisy sensor that split is refused where the
+contact lies on recorded contour (:func:`~core2d.planner.short_lids.on_map`), near a
+contact an ancestor was split at, or near an end (the widened same-contact radius):
+re-reading a wall the robot has recorded must not split a lid again and again. Along a
+wall whose noisy trace left a gap, the lid A_iB_i then lies on the wall within the
+sensor's scatter, every pass touches the wall at the lid, and each contact is refused:
+the area ended ``unknown`` although the passes had touched its contour all along
+(``deep_slot`` z5 at sigma 0.3 eps with taxels 0.25 eps: lids of 4 - 12 eps down both
+walls of the slot, 15 - 25 passes each, 5 % of the reachable contour).
+
+:class:`Touches` keeps those contacts -- the pass's contact on C_A^B's side (its
+segment from the joint crosses the lid, or the contact lies within the sensor's
+tolerance eps/2 + 2 sigma of it), not beyond an end on the lid's line
+(:func:`~core2d.planner.grazing.beyond_ends`) -- and says when they sample the lid
+finely enough: ordered along A_i -> B_i, with A_i and B_i at the ends, no two
+neighbours are as far apart as the W2 distance (eps + jitter,
+:attr:`~core2d.resolution.Resolution.w2_dist`). That is what the refused splits would
+have made: children between neighbouring contacts, each W2. The area is closed as W2
+along those contacts (their block means along the lid, :meth:`Touches.chain`), one W2
+segment per pair of neighbours. The chain is not added to the robot's map (an unknown
+lid was not either): laid a few sigma inside a slit 1.26 eps wide it narrowed the slit
+for the lid question of the areas after it (``trimesh_octagonal_pocket`` z1 at sigma
+0.1 eps: coverage within eps/2 + 2 sigma 0.988 -> 0.951 with the chain on the map,
+0.991 without). The rule only reads the passes the revisit makes anyway: the motions
+are those of the run without it.
+
+It needs at least one contact farther than the lid's end radius from both ends (the
+lid's middle was touched, not only its ends: ends alone are the revisit's W3 by
+probing, a slit narrower than eps). Perfect sensing (jitter 0) leaves the paper's flow
+as it was: :func:`applies` is False.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core2d.planner.regions import cross
+from core2d.resolution import Resolution
+
+__all__ = ["Touches", "applies"]
+
+
+def applies(res: Resolution) -> bool:
+    """The rule acts with a noisy sensor only (two readings of one point differ)."""
+    return res.jitter > 0
+
+
+def _behind(a, b, joint, point) -> bool:
+    """Does the probe's segment from ``joint`` to ``point`` cross A_iB_i?"""
+    ab, pq = b - a, point - joint
+    den = float(cross(ab, pq))
+    if den == 0.0:
+        return False
+    s, t = float(cross(joint - a, pq)) / den, float(cross(joint - a, ab)) / den
+    return 0.0 <= s <= 1.0 and 0.0 <= t <= 1.0
+
+
+@dataclass
+class Touches:
+    """Contacts the revisit's passes read on one lid's contour.
+
+    res : Resolution -- the sensor's stated resolution.
+    a, b : (2,) float -- A_i and B_i.
+    end_radius : float -- a contact this close to A_i or B_i is an end again.
+    points : list of (2,) float -- the contacts kept (:meth:`add`).
+    along : list of float -- their positions along A_i -> B_i (0 at A_i, 1 at B_i).
+
+    Examples
+    --------
+    A lid 4 eps long on y = 0, the wall a hair behind it (y < 0), a sensor of
+    sigma 0.3 eps and taxels 0.25 eps (W2 distance 2.52 eps); the probe comes from y > 0.
+
+    >>> res = Resolution.of(1.0, noise=0.3, taxel=0.25)
+    >>> t = Touches(res, np.zeros(2), np.array([4.0, 0.0]), end_radius=0.5)
+    >>> t.add((1.0, 3.0), (5.0, -0.1)), t.add((1.0, 3.0), (1.0, 2.5))  # past B; in front
+    (False, False)
+    >>> t.add((1.5, 3.0), (1.5, -0.2)), t.closes()  # gaps 1.51 and 2.51 eps
+    (True, True)
+    >>> t.chain().round(2).tolist()
+    [[0.0, 0.0], [1.5, -0.2], [4.0, 0.0]]
+    """
+
+
+    res: Resolution
+    a: np.ndarray
+    b: np.ndarray
+    end_radius: float
+    points: list = field(default_factory=list)
+    along: list = field(default_factory=list)
+
+    def add(self, joint, point) -> bool:
+        """Keep ``point`` (a pass's contact, the probe's ``joint`` when read) if it
+        lies on C_A^B's side of the lid and projects inside it; whether it was kept."""
+        a, b, p = self.a, self.b, np.asarray(point, dtype=np.float64)
+        ab = b - a
+        u = float((p - a) @ ab / max(float(ab @ ab), 1e-300))
+        if not 0.0 < u < 1.0:  # beyond an end: the wall the lid lies along
+            return False
+        off = float(np.hypot(*(p - a - u * ab)))
+        if off > self.res.sensor_tol and not _behind(a, b, np.asarray(joint, float), p):
+            return False  # in front of the lid: contour reached from F without it
+        self.points.append(p)
+        self.along.append(u)
+        return True
+
+    def _raw(self) -> np.ndarray:
+        """(k + 2, 2) float: A_i, the kept contacts in order along the lid, B_i."""
+        order = np.argsort(self.along, kind="stable")
+        return np.vstack([self.a, *[self.points[i] for i in order], self.b])
+
+    def chain(self) -> np.ndarray:
+        """(m + 2, 2) float: A_i, the means of the kept contacts in blocks of
+        :attr:`~core2d.resolution.Resolution.hop` (eps/4 + jitter) along the lid, B_i --
+        the block means of :mod:`core2d.planner.denoise` taken along the lid: readings
+        scattered across a straight wall average onto it."""
+        if not self.points:
+            return np.vstack([self.a, self.b])
+        length = float(np.hypot(*(self.b - self.a)))
+        block = np.floor(np.asarray(self.along) * length / self.res.hop).astype(np.int64)
+        pts = np.asarray(self.points, dtype=np.float64)
+        means = [pts[block == k].mean(axis=0) for k in np.unique(block)]
+        return np.vstack([self.a, *means, self.b])
+
+    def _gaps(self) -> np.ndarray:
+        return np.hypot(*np.diff(self._raw(), axis=0).T)
+
+    def middle_touched(self) -> bool:
+        """Is some kept contact farther than the end radius from both ends?"""
+        return any(min(np.hypot(*(p - self.a)), np.hypot(*(p - self.b))) > self.end_radius
+                   for p in self.points)
+
+    def closes(self) -> bool:
+        """Do the kept contacts sample the lid finely enough for W2 piece by piece
+        (every neighbour within the W2 distance, the middle touched)?"""
+        return (applies(self.res) and self.middle_touched()
+                and float(self._gaps().max()) < self.res.w2_dist)

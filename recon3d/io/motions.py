@@ -49,7 +49,10 @@ def _columns(srun: SliceRun, plane) -> dict | None:
     w0 = o + b[:, :1] * u + b[:, 1:2] * v
     w1 = o + a[:, :1] * u + a[:, 1:2] * v
     wd = np.round(np.cos(a[:, 2:3]) * u + np.sin(a[:, 2:3]) * v, 12) + 0.0  # no -0
-    others = [";".join(f"{x:.12g} {y:.12g}" for x, y in log.others(k)) for k in range(n)]
+    cells = [f"{x:.12g} {y:.12g}" for x, y in log.other.tolist()]  # each point once
+    start = log.other_start.tolist()
+    others = [";".join(cells[start[k]:start[k + 1]]) if start[k + 1] > start[k] else ""
+              for k in range(n)]
     floats = np.column_stack([b, a, log.tip])
     cols = {"family": [int(srun.family)] * n, "slice": [int(plane.index)] * n,
             "index": list(range(n)), "kind": [KINDS[k] for k in log.kind],

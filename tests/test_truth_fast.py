@@ -179,6 +179,67 @@ def test_reachable_is_the_exact_test_with_holes_and_islands(loops):
                           exact_reachable(loops, samp.points, samp.edge))
 
 
+def _bored_square(hole):
+    """A square 10 across with a hole (clockwise) of the given corners."""
+    outer = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
+    return [outer, np.asarray(hole, float)[::-1]]
+
+
+def test_hole_samples_skip_the_arcs(monkeypatch):
+    """Samples inside a hole's edges are unreachable without the arcs (every ray leaves the
+    hole through its loop): the exact arcs are asked only for the rest, and the answer is
+    the exact test's."""
+    loops = _bored_square([[3.0, 3.0], [7.0, 3.0], [7.0, 6.0], [3.0, 6.0]])
+    samp = R.sample_contour(loops, 0.1)
+    on_hole = R.loop_is_hole(loops)[R.contour_edges(loops)[2][samp.edge]]
+    assert on_hole.sum() == 140
+    asked = []
+    exact = R.free_angle
+    monkeypatch.setattr(R, "free_angle",
+                        lambda lp, pts, *a, **k: asked.append(np.asarray(pts)) or exact(lp, pts, *a, **k))
+    got = R.reachable(loops, samp.points, samp.edge)
+    monkeypatch.setattr(R, "free_angle", exact)
+    assert np.array_equal(got, exact_reachable(loops, samp.points, samp.edge))
+    assert not got[on_hole].any() and got[~on_hole].all()
+    assert sum(len(p) for p in asked) == 1  # the one the exact arcs always check
+    # a smaller angle_tol than SEALED_TOL: the hole's samples go to the arcs again
+    asked.clear()
+    monkeypatch.setattr(R, "free_angle",
+                        lambda lp, pts, *a, **k: asked.append(np.asarray(pts)) or exact(lp, pts, *a, **k))
+    R.reachable(loops, samp.points, samp.edge, angle_tol=1e-12)
+    assert sum(len(p) for p in asked) >= 140
+
+
+def test_hole_samples_near_other_edges_go_to_the_arcs(monkeypatch):
+    """Two square holes joined by a channel 5e-7 wide (the margin is 1e-6 of the size,
+    1e-5 here) and a point 5e-6 from a hole's corner: the channel's samples lie within the
+    margin of the other channel wall, the point within it of the neighbouring edge -- all
+    are left to the exact arcs, which agree; the squares' other samples are not."""
+    w = 2.5e-7
+    dumbbell = _bored_square([[2, 2], [4, 2], [4, 5 - w], [6, 5 - w], [6, 2], [8, 2], [8, 8],
+                              [6, 8], [6, 5 + w], [4, 5 + w], [4, 8], [2, 8]])
+    assert R.loop_is_hole(dumbbell).tolist() == [False, True]
+    samp = R.sample_contour(dumbbell, 0.1)
+    a, b, _ = R.contour_edges(dumbbell)
+    corner = 4 + 11  # the hole's edge (2, 2) -> (2, 8) after the reversal
+    assert np.array_equal(a[corner], [2.0, 2.0]) and np.array_equal(b[corner], [2.0, 8.0])
+    points = np.vstack([samp.points, [[2.0, 2.0 + 5e-6]]])
+    edges = np.append(samp.edge, corner)
+    channel = (points[:, 0] > 4.0) & (points[:, 0] < 6.0) & (np.abs(points[:, 1] - 5.0) < 2 * w)
+    assert channel.sum() == 40
+    asked = []
+    exact = R.free_angle
+    monkeypatch.setattr(R, "free_angle",
+                        lambda lp, pts, *a, **k: asked.append(np.asarray(pts)) or exact(lp, pts, *a, **k))
+    got = R.reachable(dumbbell, points, edges)
+    monkeypatch.setattr(R, "free_angle", exact)
+    assert np.array_equal(got, exact_reachable(dumbbell, points, edges))
+    sent = {tuple(p) for p in np.vstack(asked)}
+    assert all(tuple(p) in sent for p in points[channel]) and tuple(points[-1]) in sent
+    on_hole = R.loop_is_hole(dumbbell)[R.contour_edges(dumbbell)[2][edges]]
+    assert len(sent) < 0.2 * on_hole.sum()
+
+
 def test_segment_distances_with_non_finite_input():
     """Non-finite coordinates (one cell holds every segment): finite points get their
     distance to the finite segments, a NaN point inf."""

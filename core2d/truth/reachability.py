@@ -57,6 +57,8 @@ __all__ = [
 _CHUNK = 500_000
 #: points per chunk
 _MAX_ROWS = 4096
+#: smallest ``angle_tol`` for which hole samples are decided without arcs (:func:`_sealed`)
+SEALED_TOL = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -220,12 +222,13 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     """(m,) bool: some ray from the point to infinity crosses no contour edge.
 
     Points on the convex hull boundary are accepted without the full test
-    (the outward normal of a supporting line is free), and so are points with
+    (the outward normal of a supporting line is free), points inside the edges of
+    hole loops rejected (``_sealed``: every ray from them leaves the hole through its
+    loop; while ``angle_tol`` is at least ``SEALED_TOL``), and points with
     a free cone of directions (:mod:`core2d.truth.free_ray`: a gap of at least
     2e-5 rad, used while ``angle_tol`` is below 1e-5). Elsewhere this is
     ``free_angle(...) > angle_tol``: grazing rays and measure-zero gaps are
-    blocked. The answers are those of the exact test alone. Hole loops come out unreachable because every ray from them
-    must cross their outer loop.
+    blocked. The answers are those of the exact test alone.
 
     Examples
     --------
@@ -233,7 +236,7 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     >>> reachable(sq, [[1.0, 0.0]], [0]).tolist()
     [True]
     """
-    a, b, _ = contour_edges(loops)
+    a, b, loop = contour_edges(loops)
     points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(points) == 0 or len(a) == 0:
         return np.zeros(len(points), dtype=bool)
@@ -242,6 +245,11 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     hull = shapely.convex_hull(shapely.multipoints(a)).boundary
     ok = shapely.distance(shapely.points(points), hull) <= atol
     todo = np.flatnonzero(~ok)
+    if len(todo) and angle_tol >= SEALED_TOL:  # hole samples: blocked all round, no arcs
+        on_hole = loop_is_hole(loops)[loop[edge_ids[todo]]]
+        sealed = _sealed(points[todo], edge_ids[todo], a, b, on_hole, 1e3 * atol)
+        sealed[0] &= not sealed.all()  # one left for the arcs, as below
+        todo = todo[~sealed]
     if len(todo) and angle_tol < HALF_ANGLE:  # a free cone proves most of the rest
         proved = _cone_proves(points[todo], edge_ids[todo], a, b, atol)
         ok[todo] = proved
@@ -255,6 +263,27 @@ def reachable(loops, points, edge_ids=None, angle_tol: float = 1e-9, chunk: int 
     if len(todo):
         ok[todo] = free_angle(loops, points[todo], edge_ids[todo], chunk) > angle_tol
     return ok
+
+
+def _sealed(p, own, a, b, on_hole, margin) -> np.ndarray:
+    """(c,) bool: points on a hole loop's edge (``on_hole``) farther than ``margin`` from
+    every other edge (so from their own edge's ends too, which the neighbouring edges
+    share): unreachable for certain.
+
+    A hole loop runs clockwise, its free side (on the edges' right) is the bounded region it
+    encloses: every ray from a point inside one of its edges into that side leaves the
+    region through the loop (Jordan), at a point farther than ``margin`` from where it
+    started, on an edge whose closed arc of directions holds the ray's -- the exact arcs
+    leave no gap but rounding's, far below :data:`SEALED_TOL` while the point keeps
+    ``margin`` (1e-6 of the coordinates' size) from every other edge. Points nearer go to
+    the exact test."""
+    out = np.array(on_hole, dtype=bool)
+    idx = np.flatnonzero(out)
+    if len(idx):
+        tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+        pi, si = tree.query(shapely.points(p[idx]), predicate="dwithin", distance=margin)
+        out[idx[np.unique(pi[si != own[idx][pi]])]] = False
+    return out
 
 
 def _cone_proves(p, own, a, b, atol) -> np.ndarray:

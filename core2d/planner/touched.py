@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core2d.planner.regions import cross
+from core2d.planner.grazing import crosses_lid
 from core2d.resolution import Resolution
 
 __all__ = ["Touches", "applies"]
@@ -48,16 +48,6 @@ __all__ = ["Touches", "applies"]
 def applies(res: Resolution) -> bool:
     """The rule acts with a noisy sensor only (two readings of one point differ)."""
     return res.jitter > 0
-
-
-def _behind(a, b, joint, point) -> bool:
-    """Does the probe's segment from ``joint`` to ``point`` cross A_iB_i?"""
-    ab, pq = b - a, point - joint
-    den = float(cross(ab, pq))
-    if den == 0.0:
-        return False
-    s, t = float(cross(joint - a, pq)) / den, float(cross(joint - a, ab)) / den
-    return 0.0 <= s <= 1.0 and 0.0 <= t <= 1.0
 
 
 @dataclass
@@ -102,7 +92,7 @@ class Touches:
         if not 0.0 < u < 1.0:  # beyond an end: the wall the lid lies along
             return False
         off = float(np.hypot(*(p - a - u * ab)))
-        if off > self.res.sensor_tol and not _behind(a, b, np.asarray(joint, float), p):
+        if off > self.res.sensor_tol and not crosses_lid(a, b, joint, p):
             return False  # in front of the lid: contour reached from F without it
         self.points.append(p)
         self.along.append(u)

@@ -101,11 +101,31 @@ def test_a_chain_closes_w2_off_the_map():
     area = SimpleNamespace(index=0, a=A, b=B, pose_a=None, pose_b=None)
     run.result.areas.append(AreaRecord(0, A.copy(), B.copy(), -1, "revisit"))
     chain = np.array([A, [2.0, -0.2], [4.0, -0.1], B])
-    run.close(area, "W2", "touched", chain=chain)
-    assert [s.tolist() for s in run.result.w2] == [chain[i:i + 2].tolist() for i in range(3)]
+    segments = [chain[i:i + 2] for i in range(3)]
+    run.close(area, "W2", "touched", pieces={"W2": segments})
+    assert [s.tolist() for s in run.result.w2] == [s.tolist() for s in segments]
     assert run.result.known_at["w2"] == [6, 6, 6] and run.known.pieces == []
+    run.close(area, "unknown", "partly", pieces={"W2": segments[:1], "unknown": segments[1:]})
+    assert len(run.result.w2) == 4 and [s.tolist() for s in run.result.unknown] == [
+        s.tolist() for s in segments[1:]]
+    assert run.result.areas[0].outcome == "unknown" and run.known.pieces == []
     run.close(area, "W2", "Dist(A,B) < eps")
-    assert len(run.result.w2) == 4 and len(run.known.pieces) == 1
+    assert len(run.result.w2) == 5 and len(run.known.pieces) == 1
+
+
+def test_a_lid_touched_in_part():
+    """Touches at 1.5 and 2.5 eps along a lid 6 eps long, none beyond: W2 up to the last
+    touch, the 3.5 eps left to B unknown; no touch off the ends' radius, nothing."""
+    t, _ = _touches([(1.5, -0.2), (2.5, -0.1)])
+    assert not t.closes()
+    got = t.pieces()
+    assert [s.round(2).tolist() for s in got["W2"]] == [[[0.0, 0.0], [1.5, -0.2]],
+                                                        [[1.5, -0.2], [2.5, -0.1]]]
+    assert [s.tolist() for s in got["unknown"]] == [[[2.5, -0.1], [6.0, 0.0]]]
+    closed, _ = _touches([(1.5, -0.2), (3.0, -0.1), (4.5, 0.1)])
+    assert closed.closes() and set(closed.pieces()) == {"W2"}
+    assert _touches([(0.3, -0.1), (5.8, -0.1)])[0].pieces() is None  # ends only
+    assert _touches([(3.0, -0.1)])[0].pieces() is None  # gaps of 3 eps either side
 
 
 def test_perfect_sensing_keeps_the_paper_flow():
@@ -137,9 +157,9 @@ def test_a_cup_wall_the_passes_touched_is_w2(monkeypatch):
     sensor = SensorModel.of_eps(eps, 0.3, 0.25, 5)
     res = sense_slice(contact, ws, eps, sensor=sensor)
     with monkeypatch.context() as m:
-        m.setattr(revisit.Touches, "closes", lambda self: False)
+        m.setattr(revisit.Touches, "pieces", lambda self: None)
         without = sense_slice(contact, ws, eps, sensor=sensor)
-    touched = [r for r in res.areas if "touched C_A^B" in r.note]
+    touched = [r for r in res.areas if "touched C_A^B along the lid" in r.note]
     assert touched and all(r.outcome == "W2" for r in touched)
     assert not any("touched C_A^B" in r.note for r in without.areas)
     assert res.stats.motions == without.stats.motions
@@ -157,3 +177,35 @@ def test_a_cup_wall_the_passes_touched_is_w2(monkeypatch):
     assert new.length > 2 * eps
     pts = shapely.get_coordinates(shapely.segmentize(new, eps / 8))
     assert shapely.distance(boundary, shapely.points(pts)).max() <= 0.5 * eps + 0.6 * eps
+
+
+def test_a_mushroom_lid_touched_in_part(monkeypatch):
+    """``mushroom`` z7, sigma 0.3 eps, taxels 0.25 eps, the study's seed: a lid whose
+    passes touched part of it ends unknown only across its gaps, W2 where touched. Against
+    the run where such a lid stays wholly unknown: the same motions, more coverage within
+    eps/2 + 2 sigma, its W2 pieces on the true contour (shapely) and shorter than the W2
+    distance, its unknown pieces the gaps (at least that long)."""
+    loops, contact, ws, eps = _scene("mushroom", 7)
+    sensor = SensorModel.of_eps(eps, 0.3, 0.25, 7)
+    res = sense_slice(contact, ws, eps, sensor=sensor)
+    whole = Touches.pieces
+    with monkeypatch.context() as m:
+        m.setattr(revisit.Touches, "pieces",
+                  lambda self: whole(self) if self.closes() else None)
+        without = sense_slice(contact, ws, eps, sensor=sensor)
+    part = [r for r in res.areas if "W2 where they touched" in r.note]
+    assert part and all(r.outcome == "unknown" for r in part)
+    assert res.stats.motions == without.stats.motions
+    m_on, m_off = (sensor_metrics(loops, r, eps, 0.3 * eps) for r in (res, without))
+    assert m_on["coverage_sensor"] > m_off["coverage_sensor"]
+    assert m_on["precision_sensor"] >= 0.98
+    res_of = Resolution.of(eps, noise=0.3 * eps, taxel=0.25 * eps)
+    old = {tuple(np.round(np.asarray(s), 12).ravel()) for s in without.w2}
+    new = [np.asarray(s) for s in res.w2 if tuple(np.round(np.asarray(s), 12).ravel()) not in old]
+    assert new and all(np.hypot(*(s[1] - s[0])) < res_of.w2_dist for s in new)
+    boundary = shapely.MultiLineString([np.vstack([lp, lp[:1]]) for lp in loops])
+    pts = shapely.get_coordinates(shapely.segmentize(shapely.MultiLineString(new), eps / 8))
+    assert shapely.distance(boundary, shapely.points(pts)).max() <= res_of.sensor_tol
+    gaps = [np.asarray(u) for u in res.unknown
+            if not any(np.allclose(u, w) for w in without.unknown)]
+    assert gaps and all(np.hypot(*(g[1] - g[0])) >= res_of.w2_dist for g in gaps)

@@ -77,7 +77,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
      it finely enough -- no two neighbours along the lid, A_i and B_i included, as far
      apart as eps + jitter, the middle touched -> **W2** along their block means
      (:mod:`~core2d.planner.touched`): what the refused splits would have made;
-   * otherwise -> ``unknown``, reported with the lid in the result.
+   * otherwise -> ``unknown``, reported with the lid in the result -- with a noisy sensor
+     whose passes touched the lid's middle, W2 where neighbouring touches lie nearer than
+     eps + jitter and the unknown chords only across the gaps.
 
 A pass that touches reachable contour behind the lid farther than eps/2
 from its ends -- the wall right behind a lid laid along it in a slot
@@ -319,12 +321,14 @@ def revisit_one(run: Exploration, area):
                                           "crosses recorded contour")
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
-    if touches is not None and touches.closes():
+    part = touches.pieces() if touches is not None else None
+    if part is not None and "unknown" not in part:
         return run.close(area, "W2", note + "; they touched C_A^B along the lid, every "
-                         "neighbour within eps + the sensor's jitter", chain=touches.chain())
+                         "neighbour within eps + the sensor's jitter", pieces=part)
     if candidate and ends_only:
         return note + "; each ended at a touched end (resolution eps)"
-    run.close(area, "unknown", note)
+    run.close(area, "unknown", note + ("; W2 where they touched C_A^B, neighbours within eps "
+                                       "+ the sensor's jitter" if part else ""), pieces=part)
 
 
 def revisit(run: Exploration) -> None:

@@ -185,21 +185,22 @@ class Exploration:
                                              area.parent, area.rule))
         self.queue.append(area)
 
-    def close(self, area, outcome, note="", chain=None):
-        """Record ``area``'s outcome; a W2, W3 or unknown area writes its lid, or the
-        segments of ``chain`` ((k, 2) float from A_i to B_i: a W2 touched piece by
-        piece, :mod:`core2d.planner.touched`, which the map leaves out as it leaves an
-        unknown lid)."""
+    def close(self, area, outcome, note="", pieces=None):
+        """Record ``area``'s outcome; a W2, W3 or unknown area writes its lid, or
+        ``pieces`` ({"W2" / "unknown": list of (2, 2) float}: a lid the revisit's passes
+        touched, :mod:`core2d.planner.touched`), which the map leaves out as it leaves an
+        unknown lid."""
         rec = self.result.areas[area.index]
         rec.outcome, rec.note = outcome, note
         if outcome in ("W2", "W3", "unknown"):
-            line = np.stack([area.a, area.b]) if chain is None else np.asarray(chain, float)
-            for lid in (line[i:i + 2] for i in range(len(line) - 1)):
-                getattr(self.result, outcome.lower()).append(lid.copy())
-                if outcome != "unknown":
-                    self.result.known_at[outcome.lower()].append(self.probe.motions - 1)
-            if outcome != "unknown" and self.known is not None and chain is None:
-                self.known.add(line, area.pose_a, area.pose_b)
+            lid = np.stack([area.a, area.b])
+            for kind, segments in (pieces or {outcome: [lid]}).items():
+                for seg in segments:
+                    getattr(self.result, kind.lower()).append(np.array(seg, dtype=float))
+                    if kind != "unknown":
+                        self.result.known_at[kind.lower()].append(self.probe.motions - 1)
+            if outcome != "unknown" and self.known is not None and pieces is None:
+                self.known.add(lid, area.pose_a, area.pose_b)
 
     def defer(self, area, why):
         """A dead end: the area stays unknown and is looked at again later

@@ -29,6 +29,14 @@ for the lid question of the areas after it (``trimesh_octagonal_pocket`` z1 at s
 0.991 without). The rule only reads the passes the revisit makes anyway: the motions
 are those of the run without it.
 
+A lid whose touches leave gaps as wide as the W2 distance (the passes land where a grazing
+line meets the wall, and some stretches get none) stays ``unknown``, but only across those
+gaps: the chain's segments shorter than the W2 distance are W2, the others are the unknown
+chords reported (:meth:`Touches.pieces`) -- again the refused splits' children, W2 where the
+passes touched densely. Over the 8-slice study with three seeds this lifted coverage on 134
+of 570 slice runs at sigma 0.3 + T 0.25 and 63 at sigma 0.1, lowered it on none, with the
+same motions.
+
 It needs at least one contact farther than the lid's end radius from both ends (the
 lid's middle was touched, not only its ends: ends alone are the revisit's W3 by
 probing, a slit narrower than eps). Perfect sensing (jitter 0) leaves the paper's flow
@@ -129,3 +137,21 @@ class Touches:
         (every neighbour within the W2 distance, the middle touched)?"""
         return (applies(self.res) and self.middle_touched()
                 and float(self._gaps().max()) < self.res.w2_dist)
+
+    def pieces(self) -> dict | None:
+        """The W2 and unknown segments of the lid (for ``Exploration.close``): all of
+        :meth:`chain` W2 when :meth:`closes`; else, once the middle was touched, the chain's
+        segments shorter than the W2 distance W2 and the others unknown (the refused
+        splits' children: W2 where the passes touched densely, unknown across the gaps);
+        None when nothing is W2."""
+        chain = self.chain()
+        segments = [chain[i:i + 2] for i in range(len(chain) - 1)]
+        if self.closes():
+            return {"W2": segments}
+        if not (applies(self.res) and self.middle_touched()):
+            return None
+        short = [float(np.hypot(*(s[1] - s[0]))) < self.res.w2_dist for s in segments]
+        if not any(short):
+            return None
+        return {"W2": [s for s, k in zip(segments, short) if k],
+                "unknown": [s for s, k in zip(segments, short) if not k]}

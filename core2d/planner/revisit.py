@@ -78,8 +78,8 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
      apart as eps + jitter, the middle touched -> **W2** along their block means
      (:mod:`~core2d.planner.touched`): what the refused splits would have made;
    * otherwise -> ``unknown``, reported with the lid in the result -- with a noisy sensor
-     whose passes touched the lid's middle, W2 where neighbouring touches lie nearer than
-     eps + jitter and the unknown chords only across the gaps.
+     whose passes touched the lid's middle, and W2 pieces where neighbouring touches lie
+     nearer than eps + jitter.
 
 A pass that touches reachable contour behind the lid farther than eps/2
 from its ends -- the wall right behind a lid laid along it in a slot

@@ -139,6 +139,17 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
     assert a.metrics["slices"][0]["detected_length"] != c.metrics["slices"][0]["detected_length"]
     plain = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact")
     assert "sensor" not in plain.metrics and "coverage_sensor" not in plain.metrics["total"]
+    # the summary leads with the sensor's tolerance, and says so; eps/2 on its own line
+    from recon3d.cli.printing import summary_lines
+
+    noisy = [ln for ln in summary_lines(a) if "coverage" in ln and "2D" in ln or "eps/2:" in ln]
+    assert noisy[0].startswith(f"  2D  reachable coverage {total['coverage_sensor']:.4f}  "
+                               f"precision {total['precision_sensor']:.4f}")
+    assert noisy[0].endswith(f"within the sensor's tolerance eps/2 + 2 sigma = "
+                             f"{total['sensor_tol']:.3g}")
+    assert noisy[1].startswith(f"      within eps/2: reachable coverage {total['coverage']:.4f}"
+                               f"  precision {total['precision']:.4f}")
+    assert not any("sensor" in ln for ln in summary_lines(plain))
 
 
 def _tilted(sensor=None, degrees=-60.0):

@@ -10,7 +10,7 @@ from recon3d.config import diagonal
 from recon3d.records import MeshRun, SliceRun
 from recon3d.spellings import number, percent
 
-__all__ = ["warn", "summary_lines", "format_seconds", "projected_seconds", "estimate_note",
+__all__ = ["warn", "summary_lines", "coverage_lines", "format_seconds", "projected_seconds", "estimate_note",
            "LONG_RUN_SECONDS"]
 
 LONG_RUN_SECONDS = 60.0
@@ -94,6 +94,42 @@ def _speed(config) -> str:
     return mm if config.units == "mm" else f"{mm} = {config.speed:g} {config.units}/s"
 
 
+def coverage_lines(t: dict) -> list[str]:
+    """The summary's 2D lines from the ``total`` of ``metrics.json``.
+
+    With a sensor model (``coverage_sensor`` present) the figures first are those within
+    the tolerance the sensor allows, eps / 2 + 2 sigma, and a second line gives them within
+    eps / 2: a reading 2 sigma off the contour is as good as the sensor can tell, and read
+    alone the noiseless tolerance's precision looks like a planner's error.
+
+    >>> t = {"coverage": 0.95, "precision": 0.94, "w3_soundness": 1.0, "w3_count": 0}
+    >>> print(*coverage_lines(t), sep="\\n")
+      2D  reachable coverage 0.9500  precision 0.9400  W3 soundness 1.0000 (0 lids)
+    >>> t.update(coverage_sensor=0.976, precision_sensor=0.998, w3_soundness_sensor=1.0,
+    ...          sensor_tol=0.495)
+    >>> print(*coverage_lines(t), sep="\\n")
+      2D  reachable coverage 0.9760  precision 0.9980  W3 soundness 1.0000 (0 lids), within the sensor's tolerance eps/2 + 2 sigma = 0.495
+          within eps/2: reachable coverage 0.9500  precision 0.9400  W3 soundness 1.0000
+    """
+    reach, resolved = t.get("reachable_length") or 0.0, t.get("resolvable_length") or 0.0
+    noisy = t.get("coverage_sensor") is not None
+
+    def figures(suffix):
+        narrow = (f" ({number(t.get('coverage_resolvable' + suffix), '.4f')} of the part eps "
+                  f"resolves: {percent(1.0 - resolved / reach, 1)} of the reachable contour "
+                  f"lies in openings narrower than eps, §3.1)"
+                  ) if reach > 0 and resolved < reach * (1 - 1e-3) else ""
+        return (f"reachable coverage {number(t.get('coverage' + suffix), '.4f')}{narrow}  "
+                f"precision {number(t.get('precision' + suffix), '.4f')}  W3 soundness "
+                f"{number(t.get('w3_soundness' + suffix), '.4f')}")
+
+    lids = f" ({t.get('w3_count', 0)} lids)"
+    if not noisy:
+        return [f"  2D  {figures('')}{lids}"]
+    return [f"  2D  {figures('_sensor')}{lids}, within the sensor's tolerance eps/2 + 2 sigma = "
+            f"{number(t.get('sensor_tol'), '.3g')}", f"      within eps/2: {figures('')}"]
+
+
 def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     """Lines of the summary of a :class:`recon3d.Result`."""
     run, m = result.sensing, result.metrics
@@ -102,13 +138,7 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
     lines = [f"{run.name}: slices {fams}, eps {number(run.eps, '.4g')}, tol "
              f"{number(run.tol, '.3g')}, {run.jobs} job{'s' if run.jobs > 1 else ''}, "
              f"{number(run.seconds, '.1f')} s sensing"]
-    reach, resolved = t.get("reachable_length") or 0.0, t.get("resolvable_length") or 0.0
-    narrow = (f" ({number(t.get('coverage_resolvable'), '.4f')} of the part eps resolves: "
-              f"{percent(1.0 - resolved / reach, 1)} of the reachable contour lies in openings "
-              f"narrower than eps, §3.1)") if reach > 0 and resolved < reach * (1 - 1e-3) else ""
-    lines.append(f"  2D  reachable coverage {number(t.get('coverage'), '.4f')}{narrow}  precision "
-                 f"{number(t.get('precision'), '.4f')}  W3 soundness "
-                 f"{number(t.get('w3_soundness'), '.4f')} ({t.get('w3_count', 0)} lids)")
+    lines += coverage_lines(t)
     scores, chords = result.headline()
     lines.append(f"  3D  {scores[0]}")
     lines += [f"      {h}" for h in scores[1:]]

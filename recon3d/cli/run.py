@@ -114,9 +114,10 @@ def _run(args, config, mesh, name, notes):
                 if note is not None:
                     bar.write(f"recon3d: note: {note}", file=sys.stderr)
         bar.update(1)
-        cov = srun.metrics.get("coverage")
-        bar.set_postfix(motions=srun.result.stats.motions,
-                        coverage="n/a" if cov is None else f"{cov:.3f}")
+        cov = srun.metrics.get("coverage_sensor", srun.metrics.get("coverage"))
+        key = "coverage" if "coverage_sensor" not in srun.metrics else "coverage (eps/2+2σ)"
+        bar.set_postfix({"motions": srun.result.stats.motions,
+                         key: "n/a" if cov is None else f"{cov:.3f}"})
 
     def stage(what):
         if bar is not None:

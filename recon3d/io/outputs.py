@@ -70,7 +70,10 @@ def write_slices_png(path, sensing: dict, metrics: dict, slices=(), title: str =
     for view in views:
         view.section = loops.get((view.family, view.index))
     method = metrics.get("method", "pulling")
-    save_multiples(views, path, title=f"{title}  ·  method {method}".strip(" ·"))
+    sensor = metrics.get("sensor")
+    noisy = (f"  ·  sensor noise {sensor.get('noise', 0):g} eps, taxel {sensor.get('taxel', 0):g}"
+             f" eps" if sensor else "")
+    save_multiples(views, path, title=f"{title}  ·  method {method}{noisy}".strip(" ·"))
 
 
 def slices_png_bytes(sensing: dict, metrics: dict, slices=(), title: str = "") -> bytes:

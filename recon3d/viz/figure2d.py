@@ -208,10 +208,10 @@ def draw_joint_path(ax, view: SliceView, upto: int | None = None, arrows: int = 
 def slice_title(view: SliceView, mesh: str = "", lines: int = 1) -> str:
     """``mesh . slice z 3 (family 0) . method pulling . 1742 motions . coverage 1.000``
     (with ``lines=2``, broken after the slice)."""
-    cov = "n/a" if view.coverage is None else f"{view.coverage:.3f}"
     parts = [mesh] if mesh else []
     parts += [f"slice {view.axis} {view.position} (family {view.family})",
-              f"method {view.method}", f"{view.motions} motions", f"coverage {cov}"]
+              f"method {view.method}", f"{view.motions} motions",
+              f"coverage {view.coverage_text()}"]
     if view.log is None:
         parts.append("no motion log")
     if lines == 2:

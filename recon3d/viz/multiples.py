@@ -42,8 +42,7 @@ def _cell(views: list[SliceView]) -> np.ndarray:
 
 
 def _caption(view: SliceView) -> str:
-    cov = "n/a" if view.coverage is None else f"{view.coverage:.3f}"
-    return f"{view.axis} {view.position}: {view.motions} motions, cov {cov}"
+    return f"{view.axis} {view.position}: {view.motions} motions, cov {view.coverage_text(True)}"
 
 
 def _layout(views: list[SliceView]):

@@ -107,6 +107,8 @@ class SliceView:
     section : list of (k, 2) float or None -- true section loops (None: not available).
     motions : int -- motions of the slice (stats).
     coverage : float or None -- reachable coverage (metrics).
+    coverage_sensor : float or None -- reachable coverage within the sensor's tolerance
+        eps / 2 + 2 sigma (metrics of a run with a sensor model; None without one).
     method : str -- ``pulling`` or ``paper``.
     log : MotionLog or None -- the motion log (None: no motions.csv).
     frame : (origin, u, v) -- the plane's frame in world coordinates, each (3,).
@@ -125,6 +127,22 @@ class SliceView:
     method: str = "pulling"
     log: MotionLog | None = None
     frame: tuple = field(default=(), repr=False)
+    coverage_sensor: float | None = None
+
+    def coverage_text(self, short: bool = False) -> str:
+        """The coverage as a caption says it: within the sensor's tolerance first when the
+        run had a sensor model, with the noiseless tolerance's beside it (not ``short``).
+
+        >>> v = SliceView(0, 0, 0, "z", [], [], [], None, 10, 0.95, coverage_sensor=0.98)
+        >>> v.coverage_text(), v.coverage_text(short=True)
+        ('0.980 within eps/2 + 2 sigma (0.950 within eps/2)', '0.980 (eps/2+2σ)')
+        """
+        cov = "n/a" if self.coverage is None else f"{self.coverage:.3f}"
+        if self.coverage_sensor is None:
+            return cov
+        if short:
+            return f"{self.coverage_sensor:.3f} (eps/2+2σ)"
+        return f"{self.coverage_sensor:.3f} within eps/2 + 2 sigma ({cov} within eps/2)"
 
     def present(self) -> list[str]:
         """The classes of :data:`CLASSES` with at least one segment here, in order."""
@@ -165,7 +183,7 @@ def _view(doc: dict, position: int, axis: str, metric: dict, method: str) -> Sli
         family=int(doc["family"]), position=position, index=int(doc["index"]), axis=axis,
         segments=segments, unknown=[to_frame(w, *frame) for w in doc.get("unknown", [])],
         areas=areas, section=None, motions=int(doc.get("stats", {}).get("motions", 0)),
-        coverage=metric.get("coverage"),
+        coverage=metric.get("coverage"), coverage_sensor=metric.get("coverage_sensor"),
         method=method, frame=frame)
 
 

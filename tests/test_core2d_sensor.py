@@ -150,6 +150,14 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
     assert noisy[1].startswith(f"      within eps/2: reachable coverage {total['coverage']:.4f}"
                                f"  precision {total['precision']:.4f}")
     assert not any("sensor" in ln for ln in summary_lines(plain))
+    # batch.csv's row names the sensor and its coverage; none for perfect sensing
+    from recon3d.jobs.batch import Job, job_row
+
+    row = job_row(Job(0, "box", dict(kw, seed=1)), a, 1.0, 1.0)
+    assert (row["noise"], row["taxel"], row["coverage_sensor"]) == (0.3, 0.25,
+                                                                    total["coverage_sensor"])
+    row = job_row(Job(0, "box", {}), plain, 1.0, 1.0)
+    assert (row["noise"], row["taxel"], row["coverage_sensor"]) == (0.0, 0.0, None)
 
 
 def _tilted(sensor=None, degrees=-60.0):

@@ -47,8 +47,8 @@ from recon3d.io.staged import Staged
 
 __all__ = ["Job", "read_manifest", "run_job", "write_batch", "COLUMNS"]
 
-COLUMNS = ("job", "mesh", "axis", "slices", "eps", "backend", "sensed_slices", "coverage",
-           "fscore_1%", "chamfer_l1_diag", "hd95_diag", "motions", "robot_time_s",
+COLUMNS = ("job", "mesh", "axis", "slices", "eps", "backend", "noise", "taxel", "sensed_slices",
+           "coverage", "coverage_sensor", "fscore_1%", "chamfer_l1_diag", "hd95_diag", "motions", "robot_time_s",
            "budget_hits", "seconds")
 
 _DEFAULT = RunConfig()
@@ -161,15 +161,19 @@ def run_job(job: Job) -> dict:
 
 
 def job_row(job: Job, res: Result, diag: float, seconds: float) -> dict:
-    """The batch.csv row of a finished job (lengths over the diagonal, wall seconds)."""
+    """The batch.csv row of a finished job (lengths over the diagonal, wall seconds; the
+    sensor's noise and taxel in eps, 0 for the paper's perfect sensing, and its coverage
+    within eps/2 + 2 sigma, empty without a sensor model)."""
     tot = res.metrics["total"]
+    sensor = res.metrics.get("sensor") or {}
     s = tot.get("surface") or {}
     axis = job.params.get("axis", "z")
     return {"job": job.index, "mesh": Path(job.mesh).name, "axis": str(axis),
             "slices": job.params.get("slices", _DEFAULT.slices), "eps": res.sensing.eps,
             "backend": job.params.get("backend", _DEFAULT.backend),
+            "noise": sensor.get("noise", 0.0), "taxel": sensor.get("taxel", 0.0),
             "sensed_slices": len(res.slices),
-            "coverage": tot.get("coverage"), "fscore_1%": (s.get("fscore") or {}).get("1%"),
+            "coverage": tot.get("coverage"), "coverage_sensor": tot.get("coverage_sensor"), "fscore_1%": (s.get("fscore") or {}).get("1%"),
             "chamfer_l1_diag": None if s.get("chamfer_l1") is None else s["chamfer_l1"] / diag,
             "hd95_diag": None if s.get("hd95") is None else s["hd95"] / diag,
             "motions": tot.get("motions"), "robot_time_s": tot.get("robot_time_s"),

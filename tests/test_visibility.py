@@ -42,6 +42,35 @@ def test_compiled_half_plane_path_is_the_vectorised_one(seed, atol):
             np.testing.assert_array_equal(x, y)
 
 
+def _chains(seed):
+    """Random-walk polylines as the planner's map holds them: segment j starts where
+    j - 1 ends (the compiled path computes such a shared end once per point), three
+    chains end to start, points among them."""
+    rng = np.random.default_rng(seed)
+    walks = [np.cumsum(rng.normal(size=(int(rng.integers(5, 40)), 2)), axis=0) + 3 * k
+             for k in range(3)]
+    a = np.concatenate([w[:-1] for w in walks])
+    b = np.concatenate([w[1:] for w in walks])
+    pts = rng.normal(size=(20, 2)) * 4 + 3
+    ang = rng.uniform(-np.pi, np.pi, len(pts))
+    return pts, np.stack([np.cos(ang), np.sin(ang)], axis=1), a, b
+
+
+@pytest.mark.parametrize("atol", [0.0, 0.5])
+@pytest.mark.parametrize("seed", range(12))
+def test_compiled_path_on_polylines_is_the_vectorised_one(seed, atol):
+    """Shared ends with chains broken where a point culls a segment (behind its tangent,
+    within ``atol``, its own): bit-identical to the vectorised path."""
+    pts, tg, a, b = _chains(seed)
+    assert (a[1:] == b[:-1]).all(axis=1).mean() > 0.9
+    own = np.random.default_rng(seed).integers(-1, len(a), len(pts))
+    for o in (None, own):
+        fast = free_gaps(pts, tg, a, b, own=o, atol=atol)
+        slow = _vectorised(pts, tg, a, b, np.ones(len(pts), dtype=bool), o, atol)
+        for x, y in zip(fast, slow):
+            np.testing.assert_array_equal(x, y)
+
+
 def _hits(p, d, a, b):
     """Does the ray p + s d (s > 0) meet any segment a-b? (n,) per direction row."""
     e = b - a

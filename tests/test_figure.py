@@ -208,6 +208,24 @@ def test_unknown_areas_are_drawn_dotted_only_when_there_are_some():
         plt.close(fig)
 
 
+def test_a_noisy_run_says_its_tolerances_in_the_figures():
+    """With a sensor model the W2 label names the jitter (its W2 distance), the title and the
+    caption lead with the coverage within eps/2 + 2 sigma; without one, the paper's words."""
+    from recon3d.viz.multiples import _caption
+
+    plt = libs.pyplot()
+    for sensor, w2, cov in ((None, "W2 Dist(A,B) < eps", "coverage 1.000"),
+                            (0.97, "W2 Dist(A,B) < eps + jitter",
+                             "coverage 0.970 within eps/2 + 2 sigma (1.000 within eps/2)")):
+        view = _toy_view()
+        view.coverage_sensor = sensor
+        fig = figure2d.slice_figure(view, "m", labels=False)
+        labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        assert w2 in labels and cov in figure2d.slice_title(view)
+        assert _caption(view).endswith("cov 1.000" if sensor is None else "cov 0.970 (eps/2+2σ)")
+        plt.close(fig)
+
+
 def test_the_animated_contour_grows_with_the_motion_index():
     plt = libs.pyplot()
     fig, ax = plt.subplots()

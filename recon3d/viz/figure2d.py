@@ -38,6 +38,7 @@ TRANSFER_KINDS = ("approach", "transfer")
 _WIDTH = {"W1": 2.0, "W2": 2.4, "W3": 2.4}
 _CLASS_NAMES = {"W1": "W1 traced by the tip", "W2": "W2 Dist(A,B) < eps",
                 "W3": "W3 lid, never touching"}
+_NOISY_W2 = "W2 Dist(A,B) < eps + jitter"
 
 
 def _lines(ax, polylines, **kwargs):
@@ -220,10 +221,14 @@ def slice_title(view: SliceView, mesh: str = "", lines: int = 1) -> str:
     return "  ·  ".join(parts)
 
 
-def legend_handles(classes, unknown: bool, section: bool, postures: bool = False) -> list:
-    """Legend handles: ``classes`` (of :data:`CLASSES`), unknown, true section, postures."""
+def legend_handles(classes, unknown: bool, section: bool, postures: bool = False,
+                   noisy: bool = False) -> list:
+    """Legend handles: ``classes`` (of :data:`CLASSES`), unknown, true section, postures;
+    ``noisy``: the run had a sensor model, whose W2 distance is eps + the readings' jitter
+    (:attr:`core2d.resolution.Resolution.w2_dist`)."""
     lines = libs.lines()
-    out = [lines.Line2D([], [], color=CLASS_COLORS[c], lw=_WIDTH[c], label=_CLASS_NAMES[c],
+    names = dict(_CLASS_NAMES, W2=_NOISY_W2) if noisy else _CLASS_NAMES
+    out = [lines.Line2D([], [], color=CLASS_COLORS[c], lw=_WIDTH[c], label=names[c],
                         marker="o" if c == "W2" else None, markersize=3)
            for c in classes]
     if unknown:
@@ -238,7 +243,8 @@ def legend_handles(classes, unknown: bool, section: bool, postures: bool = False
 
 def legend_entries(view: SliceView, postures: bool) -> list:
     """:func:`legend_handles` of what ``view`` has."""
-    return legend_handles(view.present(), bool(view.unknown), bool(view.section), postures)
+    return legend_handles(view.present(), bool(view.unknown), bool(view.section), postures,
+                          view.coverage_sensor is not None)
 
 
 def slice_figure(view: SliceView, mesh: str = "", every: int = 1, labels: bool = True):

@@ -109,7 +109,8 @@ def multiples_figure(views: list[SliceView], title: str = "", width_in: float = 
     ax.set_ylim(extent[0, 1] - room, extent[1, 1])
     ax.set_aspect("equal", adjustable="box")
     present = [c for c in CLASSES if lines[c]]
-    handles = legend_handles(present, bool(unknown), bool(section))
+    handles = legend_handles(present, bool(unknown), bool(section),
+                             noisy=any(v.coverage_sensor is not None for v in views))
     fig.legend(handles=handles, loc="lower left", ncol=len(handles), fontsize=8,
                frameon=False)
     fig.suptitle(title, fontsize=10, y=1.0 - 0.08 / height_in, va="top")

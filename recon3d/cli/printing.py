@@ -10,8 +10,8 @@ from recon3d.config import diagonal
 from recon3d.records import MeshRun, SliceRun
 from recon3d.spellings import number, percent
 
-__all__ = ["warn", "summary_lines", "coverage_lines", "format_seconds", "projected_seconds", "estimate_note",
-           "LONG_RUN_SECONDS"]
+__all__ = ["warn", "summary_lines", "coverage_lines", "format_seconds", "projected_seconds",
+           "estimate_note", "LONG_RUN_SECONDS"]
 
 LONG_RUN_SECONDS = 60.0
 """A run projected to take longer than this (wall seconds) gets an estimate note."""

@@ -26,7 +26,7 @@ from recon3d.io import ply
 from recon3d.io.motions import write_motions
 from recon3d.io.side import Side, can_fork
 from recon3d.io.staged import Staged
-from recon3d.viz import plot
+from recon3d.viz import libs, plot
 from recon3d.viz.multiples import save_multiples
 from recon3d.viz.sliceview import slice_views
 
@@ -145,10 +145,7 @@ def _save_scene(scene, stage: Path) -> None:
     ``MultiBlock.save`` writes them. The large mesh's scene (64 slices, 360k + 159k
     triangles): 0.53 -> 0.21 CPU s, 11.3 -> 8.5 MB (level 5 raw: 0.48 s, 8.2 MB); the
     same arrays read back (``tests/test_outputs_scene.py``)."""
-    import vtkmodules.vtkIOCore  # noqa: F401 -- the zlib compressor's Python wrapper
-    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
-
-    writer = vtkXMLMultiBlockDataWriter()
+    writer = libs.vtm_writer()
     writer.SetFileName(str(stage / "scene.vtm"))
     writer.SetInputData(scene)
     writer.SetDataModeToAppended()

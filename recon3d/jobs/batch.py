@@ -48,8 +48,8 @@ from recon3d.io.staged import Staged
 __all__ = ["Job", "read_manifest", "run_job", "write_batch", "COLUMNS"]
 
 COLUMNS = ("job", "mesh", "axis", "slices", "eps", "backend", "noise", "taxel", "sensed_slices",
-           "coverage", "coverage_sensor", "fscore_1%", "chamfer_l1_diag", "hd95_diag", "motions", "robot_time_s",
-           "budget_hits", "seconds")
+           "coverage", "coverage_sensor", "fscore_1%", "chamfer_l1_diag", "hd95_diag", "motions",
+           "robot_time_s", "budget_hits", "seconds")
 
 _DEFAULT = RunConfig()
 
@@ -173,7 +173,8 @@ def job_row(job: Job, res: Result, diag: float, seconds: float) -> dict:
             "backend": job.params.get("backend", _DEFAULT.backend),
             "noise": sensor.get("noise", 0.0), "taxel": sensor.get("taxel", 0.0),
             "sensed_slices": len(res.slices),
-            "coverage": tot.get("coverage"), "coverage_sensor": tot.get("coverage_sensor"), "fscore_1%": (s.get("fscore") or {}).get("1%"),
+            "coverage": tot.get("coverage"), "coverage_sensor": tot.get("coverage_sensor"),
+            "fscore_1%": (s.get("fscore") or {}).get("1%"),
             "chamfer_l1_diag": None if s.get("chamfer_l1") is None else s["chamfer_l1"] / diag,
             "hd95_diag": None if s.get("hd95") is None else s["hd95"] / diag,
             "motions": tot.get("motions"), "robot_time_s": tot.get("robot_time_s"),

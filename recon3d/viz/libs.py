@@ -15,7 +15,8 @@ import types
 import numpy as np
 import trimesh
 
-__all__ = ["pyvista", "pyvista_plotting", "polydata", "pyplot", "ticker", "collections", "lines", "pil_image"]
+__all__ = ["pyvista", "pyvista_plotting", "vtm_writer", "polydata", "pyplot", "ticker",
+           "collections", "lines", "pil_image"]
 
 
 def pyvista() -> types.ModuleType:
@@ -30,6 +31,16 @@ def pyvista_plotting() -> types.ModuleType:
     import pyvista.plotting as plotting  # lazy: only a picture needs it
 
     return plotting
+
+
+def vtm_writer():
+    """A new ``vtkXMLMultiBlockDataWriter`` (``scene.vtm``), with the zlib compressor's Python
+    wrapper loaded so that its level can be set."""
+    # lazy: files only; vtkIOCore holds the zlib compressor's Python wrapper
+    import vtkmodules.vtkIOCore  # noqa: F401
+    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter  # lazy: files only
+
+    return vtkXMLMultiBlockDataWriter()
 
 
 def polydata(mesh: trimesh.Trimesh):

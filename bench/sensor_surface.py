@@ -57,6 +57,9 @@ def main(argv=None) -> int:
     scenes = args.scenes.split(",") if args.scenes else list(meshes.names())
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip() or "unknown"
+    if subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                      capture_output=True, text=True).stdout.strip():
+        commit += " with uncommitted changes"
     print(f"commit {commit}; {args.slices} z-slices, Embree, sensor seed 0", flush=True)
     t0, rows = time.perf_counter(), []
     print("each cell: F@1 % over the slab (reachable coverage, within eps/2 + 2 sigma with a "

@@ -38,6 +38,7 @@ from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.sensing.regions import RegionsAsSensed
 from recon3d.surface import Reconstruction, reconstruct
+from recon3d.surface.closure import closure_lengths
 from recon3d.surface.field import grid_step
 from recon3d.viz import blocks as scene, libs, plot
 
@@ -273,8 +274,8 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     # each slice's filled region is closed in this process as the slice comes back (it only
     # waits for the workers); the reconstruction takes them as they are
     plan = resolve(config, diagonal(mesh))
-    regions = RegionsAsSensed(None if config.slices == "auto" else 2.0 * plan.tol,
-                              config.noise * plan.eps)
+    snap, noise, jitter = closure_lengths(plan.eps, plan.tol, config.noise, config.taxel)
+    regions = RegionsAsSensed(None if config.slices == "auto" else snap, noise, jitter)
 
     def sensed_one(srun: SliceRun) -> None:
         regions.add(srun)

@@ -15,13 +15,13 @@ there (``snap`` None), and a region computed with another snap than the run's is
 from __future__ import annotations
 
 from recon3d.records import MeshRun, SliceRun
-from recon3d.surface.closure import SliceRegion, result_region
+from recon3d.surface.closure import SliceRegion, closure_lengths, result_region
 
 __all__ = ["RegionsAsSensed"]
 
 
-def _region(srun: SliceRun, snap: float, noise: float) -> SliceRegion:
-    return result_region(srun.result, snap, noise)
+def _region(srun: SliceRun, snap: float, noise: float, jitter: float) -> SliceRegion:
+    return result_region(srun.result, snap, noise, jitter)
 
 
 class RegionsAsSensed:
@@ -29,24 +29,27 @@ class RegionsAsSensed:
 
     snap : float or None -- the run's snap distance (``2 * tol``) when known before the
         sensing; None: :meth:`add` does nothing.
-    noise : float -- the sensor's standard deviation (a length; 0: a perfect sensor).
+    noise, jitter : float -- the sensor's standard deviation and its readings' jitter
+        (lengths, :func:`recon3d.surface.closure.closure_lengths`; 0: a perfect sensor).
     """
 
-    def __init__(self, snap: float | None, noise: float = 0.0):
-        self.snap, self.noise = snap, noise
+    def __init__(self, snap: float | None, noise: float = 0.0, jitter: float = 0.0):
+        self.snap, self.noise, self.jitter = snap, noise, jitter
         self._got: dict[int, tuple[object, SliceRegion]] = {}
 
     def add(self, srun: SliceRun) -> None:
         """Close the region of a slice just sensed (the sensing's ``progress`` call)."""
         if self.snap is not None:
-            self._got[id(srun.result)] = (srun.result, _region(srun, self.snap, self.noise))
+            self._got[id(srun.result)] = (srun.result, _region(srun, self.snap, self.noise,
+                                                               self.jitter))
 
     def for_run(self, run: MeshRun) -> list[list[SliceRegion]] | None:
         """The regions of every slice of ``run``, per family, in its slice order (what
         :func:`recon3d.surface.reconstruct` takes as ``regions``); a slice not seen by
         :meth:`add` is closed here. None when the run's snap is not the one used."""
-        snap, noise = 2.0 * run.tol, run.config.noise * run.eps
-        if self.snap is None or snap != self.snap or noise != self.noise:
+        snap, noise, jitter = closure_lengths(run.eps, run.tol, run.config.noise,
+                                              run.config.taxel)
+        if self.snap is None or (snap, noise, jitter) != (self.snap, self.noise, self.jitter):
             return None
         out = []
         for fam in run.families:
@@ -54,6 +57,6 @@ class RegionsAsSensed:
             for s in fam.slices:
                 got = self._got.get(id(s.result))
                 regs.append(got[1] if got is not None and got[0] is s.result
-                            else _region(s, snap, noise))
+                            else _region(s, snap, noise, jitter))
             out.append(regs)
         return out

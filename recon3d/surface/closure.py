@@ -24,6 +24,10 @@ opening with no segment, a piece can be stray. The rule, in order:
    filled (the probe cannot see them), stray pieces outside add at most a
    sliver between the piece and its bridge, and pieces inside the material
    change nothing.
+4. **swept faces** (a noisy sensor only) -- a face whose core the probe's
+   postures swept is free space and left unfilled (:func:`swept_faces`): the
+   noisy pieces' loose ends are bridged closest first, and a bridge across a
+   slot's mouth would fill the slot the probe went down.
 
 Examples
 --------
@@ -42,8 +46,10 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
+from core2d.resolution import Resolution
+
 __all__ = ["Piece", "SliceRegion", "slice_region", "result_region", "probe_postures",
-           "sample_pieces", "KIND_LABEL"]
+           "swept_faces", "closure_lengths", "sample_pieces", "KIND_LABEL", "SWEPT_SHARE"]
 
 KIND_LABEL = {"W1": 1, "W2": 2, "W3": 3, "unknown": 4, "bridge": 4}
 """Surface label of the faces nearest to a piece of each kind."""
@@ -133,7 +139,7 @@ def _bridges(node, where) -> list[Piece]:
 
 
 def slice_region(w1, w2, w3, unknown, snap: float, free=None,
-                 margin: float | None = None) -> SliceRegion:
+                 margin: float | None = None, jitter: float = 0.0) -> SliceRegion:
     """Close the sensed pieces of one slice and fill them (see module doc).
 
     Parameters
@@ -145,6 +151,9 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
         unknown chords they cross are left out (step 0); None: no step 0.
     margin : float, optional -- how far from a chord's ends a posture must cross it
         (default ``snap``).
+    jitter : float -- how far two readings of one point may lie apart (a noisy sensor's,
+        :attr:`core2d.resolution.Resolution.jitter`); above 0, with ``free``, faces the
+        postures swept are left unfilled (step 4, :func:`swept_faces`).
 
     Returns
     -------
@@ -164,11 +173,52 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
                                                           [len(p.points) for p in pieces]))
     # fixed-precision noding (grid = snap / 8) is robust where floating noding fails
     noded = shapely.union_all(lines, grid_size=snap / 8)
-    faces = shapely.polygonize(shapely.get_parts(noded))
-    geom = shapely.union_all(shapely.get_parts(faces))
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(noded)))
+    if jitter > 0 and free is not None and len(free) and len(faces):
+        faces = faces[~swept_faces(faces, free, snap, jitter)]
+    geom = shapely.union_all(faces)
     if geom.geom_type not in ("Polygon", "MultiPolygon"):  # empty collection
         geom = shapely.Polygon()
     return SliceRegion(geom, tuple(pieces))
+
+
+SWEPT_SHARE = 0.5
+"""A face whose core the probe's postures sweep more than this share of is free space."""
+
+
+def swept_faces(faces, free, snap: float, jitter: float) -> np.ndarray:
+    """(f,) bool: which faces the probe swept (step 4 of a noisy sensor's closure).
+
+    A noisy sensor's pieces do not meet within ``snap``, so step 2 bridges many loose ends,
+    closest first, and some bridges (or unknown chords) close free space: a slot's mouth
+    bridged across, the slot filled (``deep_slot`` at sigma 0.3 eps, taxels 0.25 eps: three
+    of four slices). The probe's postures say where it was, and the rod does not penetrate
+    (§3.2): a face is free when the postures, widened by ``snap + jitter / 2``, cover more
+    than :data:`SWEPT_SHARE` of its core -- the face shrunk by ``snap + jitter``, as far as a
+    reading can lie from the surface the probe touched. On ``deep_slot``'s faces the share
+    is 1.0 for the bridged slots and at most 0.05 for material. A face of material merged
+    with a swept one through a gap in a wall is swept little and stays (the whole slice's
+    material is never dropped for a slot that is part of its face).
+
+    Parameters
+    ----------
+    faces : (f,) shapely Polygons.
+    free : (p, 2, 2) float -- probe postures, joint to tip (:func:`probe_postures`).
+    snap, jitter : float -- lengths.
+    """
+    free = np.asarray(free, dtype=np.float64).reshape(-1, 2, 2)
+    free = free[np.isfinite(free).all(axis=(1, 2))]
+    out = np.zeros(len(faces), dtype=bool)
+    if not len(free):
+        return out
+    cores = shapely.buffer(faces, -(snap + jitter))
+    live = np.flatnonzero(~shapely.is_empty(cores))
+    if not len(live):
+        return out
+    swept = shapely.union_all(shapely.buffer(shapely.linestrings(free), snap + jitter / 2))
+    share = shapely.area(shapely.intersection(cores[live], swept)) / shapely.area(cores[live])
+    out[live] = share > SWEPT_SHARE
+    return out
 
 
 def _pierced(chords, free, margin: float) -> np.ndarray:
@@ -201,13 +251,29 @@ def probe_postures(motions) -> np.ndarray:
                      np.asarray(motions.tip, dtype=np.float64)], axis=1)
 
 
-def result_region(result, snap: float, noise: float = 0.0) -> SliceRegion:
+def closure_lengths(eps: float, tol: float, noise: float = 0.0,
+                    taxel: float = 0.0) -> tuple[float, float, float]:
+    """``(snap, noise, jitter)`` of a run's closure, lengths: snap ``2 tol``, the sensor's
+    standard deviation and the jitter of its readings (:class:`core2d.resolution.Resolution`)
+    from ``noise`` and ``taxel`` given in eps (0, 0: the paper's perfect sensing).
+
+    >>> closure_lengths(1.0, 0.05)
+    (0.1, 0.0, 0.0)
+    >>> [round(x, 3) for x in closure_lengths(2.0, 0.1, noise=0.3, taxel=0.25)]
+    [0.2, 0.6, 3.046]
+    """
+    res = Resolution.of(eps, tol, noise=noise * eps, taxel=taxel * eps)
+    return 2.0 * tol, noise * eps, res.jitter
+
+
+def result_region(result, snap: float, noise: float = 0.0, jitter: float = 0.0) -> SliceRegion:
     """:func:`slice_region` of a :class:`core2d.SliceResult`: its pieces, less the unknown
     chords its motion log's postures went through (margin ``snap + 3 noise``, ``noise`` the
-    sensor's standard deviation, a length)."""
+    sensor's standard deviation, a length), less the faces they swept when ``jitter`` (the
+    sensor's, a length) is above 0."""
     return slice_region(result.w1, result.w2, result.w3, result.unknown, snap,
                         probe_postures(getattr(result, "motions", None)),
-                        snap + 3.0 * noise)
+                        snap + 3.0 * noise, jitter)
 
 
 def sample_pieces(pieces, spacing: float) -> tuple[np.ndarray, np.ndarray]:

@@ -14,7 +14,7 @@ import trimesh
 from recon3d.config import diagonal
 from recon3d.records import MeshRun
 from recon3d.surface.caps import CapSettings
-from recon3d.surface.closure import SliceRegion, result_region
+from recon3d.surface.closure import SliceRegion, closure_lengths, result_region
 from recon3d.surface.confidence import ConfidenceSettings
 from recon3d.surface.field import grid_step
 from recon3d.surface.fusion import FusionSettings
@@ -74,11 +74,11 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
-    snap, noise = 2.0 * run.tol, run.config.noise * run.eps
+    snap, noise, jitter = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
     given, regions, solids, notes = regions, [], [], []
     for f, fam in enumerate(run.families):
         regs = (list(given[f]) if given is not None else
-                [result_region(s.result, snap, noise) for s in fam.slices])
+                [result_region(s.result, snap, noise, jitter) for s in fam.slices])
         regions.append(regs)
         if len(fam.slices) < 2:
             solids.append(None)

@@ -14,10 +14,7 @@ opening with no segment, a piece can be stray. The rule, in order:
    floor across a tooth to the next slot's wall, laid by a split of an area that
    ended unknown) would otherwise fill the slots the probe traced.
 1. **snap** -- piece end points closer than ``snap`` become one node (their
-   mean), so pieces that meet up to the contact resolution share an end.
-   With a noisy sensor, the free ends of a piece that lies, both ends, within
-   snap + jitter of other pieces (a wall traced twice) are left out of step 2
-   (:func:`_lying_on_others`).
+   mean), so pieces that meet up to the contact resolution share an end;
 2. **bridge** -- nodes of odd degree (free ends) are paired greedily,
    closest pair first, and joined by a straight *bridge*; bridges are not
    sensed (surface label 4);
@@ -123,41 +120,9 @@ def _snap(pieces, snap) -> tuple[list[Piece], np.ndarray, np.ndarray]:
     return out, node, where
 
 
-def _lying_on_others(pieces, node, where, reach: float) -> np.ndarray:
-    """The free ends of pieces that lie, both ends, on other pieces (step 1b, a noisy
-    sensor only): (m,) int nodes, two per such piece.
-
-    A wall traced twice, or a trace that starts and ends on contour already recorded,
-    leaves two free ends whose readings lie within ``reach`` (snap + the jitter: how far
-    two readings of one point may lie apart) of other pieces. The piece adds nothing to
-    the closed curve, and its ends, bridged closest first, would pair with the true free
-    ends around them (``fig18_overhangs`` at sigma 0.1: a bridge from the overhang's far
-    corner cut the overhang off). Only ends of degree 1 count, so the nodes left out are
-    two per piece and the pairing's parity holds.
-    """
-    deg = np.bincount(node, minlength=len(where))
-    ends = node.reshape(-1, 2)
-    cand = np.flatnonzero((deg[ends[:, 0]] == 1) & (deg[ends[:, 1]] == 1)
-                          & (ends[:, 0] != ends[:, 1]))
-    if not len(cand) or reach <= 0:
-        return np.zeros(0, dtype=np.int64)
-    lines = shapely.linestrings(np.concatenate([p.points for p in pieces]),
-                                indices=np.repeat(np.arange(len(pieces)),
-                                                  [len(p.points) for p in pieces]))
-    tree = shapely.STRtree(lines)
-    out = []
-    for j in cand:
-        hit, near = tree.query(shapely.points(where[ends[j]]), predicate="dwithin",
-                               distance=reach)
-        if set(hit[near != j]) == {0, 1}:
-            out += [ends[j, 0], ends[j, 1]]
-    return np.asarray(out, dtype=np.int64)
-
-
-def _bridges(node, where, left_out=()) -> list[Piece]:
-    """Pair the odd-degree nodes greedily, closest first (``left_out``: nodes not paired)."""
+def _bridges(node, where) -> list[Piece]:
+    """Pair the odd-degree nodes greedily, closest first."""
     odd = np.flatnonzero(np.bincount(node, minlength=len(where)) % 2 == 1)
-    odd = np.setdiff1d(odd, np.asarray(left_out, dtype=np.int64))
     if len(odd) < 2:
         return []
     pts = where[odd]
@@ -200,8 +165,7 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
                    if not gone]
     pieces = _raw_pieces(w1, w2, w3, unknown)
     pieces, node, where = _snap(pieces, snap)
-    left_out = _lying_on_others(pieces, node, where, snap + jitter) if jitter > 0 else ()
-    pieces = pieces + _bridges(node, where, left_out)
+    pieces = pieces + _bridges(node, where)
     if not pieces:
         return SliceRegion(shapely.Polygon(), ())
     coords = np.concatenate([p.points for p in pieces])

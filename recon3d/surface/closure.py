@@ -215,7 +215,17 @@ def swept_faces(faces, free, snap: float, jitter: float) -> np.ndarray:
     live = np.flatnonzero(~shapely.is_empty(cores))
     if not len(live):
         return out
-    swept = shapely.union_all(shapely.buffer(shapely.linestrings(free), snap + jitter / 2))
+    # only postures that come within the widening of a core can sweep any of it: the
+    # union of the rest (most of a slice's thousands, in the open free space or touching
+    # the material's faces) is never built
+    widen = snap + jitter / 2
+    lines = shapely.linestrings(free)
+    zone = shapely.buffer(shapely.union_all(cores[live]), widen)
+    shapely.prepare(zone)
+    near = shapely.intersects(zone, lines)
+    if not near.any():
+        return out
+    swept = shapely.union_all(shapely.buffer(lines[near], widen))
     share = shapely.area(shapely.intersection(cores[live], swept)) / shapely.area(cores[live])
     out[live] = share > SWEPT_SHARE
     return out

@@ -99,3 +99,32 @@ def test_a_thin_wall_touched_on_both_sides_stays():
     ys = np.arange(0.25, 10.0, 0.25)
     free = np.array([[[-30.0, y], [0.05, y]] for y in ys] + [[[31.0, y], [0.95, y]] for y in ys])
     assert not swept_faces(np.array([wall]), free, 0.05, 0.6)[0]
+
+
+def _reference_swept(faces, free, snap, jitter):
+    """The share from the union of every posture (what swept_faces computes from the nearby
+    ones only)."""
+    cores = shapely.buffer(faces, -(snap + jitter))
+    swept = shapely.union_all(shapely.buffer(shapely.linestrings(free), snap + jitter / 2))
+    out = np.zeros(len(faces), dtype=bool)
+    for k, core in enumerate(cores):
+        if not core.is_empty:
+            out[k] = core.intersection(swept).area / core.area > 0.5
+    return out
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_nearby_postures_decide_as_all_of_them(seed):
+    """Postures farther than the widening from every core are left out of the union: the
+    decisions are those of the union of all postures, on faces whose cores postures just
+    outside them (within the widening) cover by about half."""
+    rng = np.random.default_rng(seed)
+    snap, jitter = 0.05, 0.9
+    faces = np.array([shapely.box(x, 0.0, x + w, 6.0)
+                      for x, w in zip((0.0, 10.0, 20.0), rng.uniform(2.6, 3.4, 3))])
+    xs = np.concatenate([rng.uniform(-1.0, 25.0, 6), [f.bounds[0] + 0.95 + d
+                         for f in faces for d in rng.uniform(-0.5, 0.2, 6)]])
+    free = np.array([[[x, 40.0], [x + rng.uniform(-0.1, 0.1), rng.uniform(-2.0, 3.0)]]
+                     for x in xs])
+    got = swept_faces(faces, free, snap, jitter)
+    assert (got == _reference_swept(faces, free, snap, jitter)).all()

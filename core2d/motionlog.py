@@ -41,6 +41,11 @@ class MotionLog:
     event : (n,) str -- the Reading's event; for traces the case of §4.3.2.
     before, after : (n, 3) float -- joint x, y and probe angle theta.
     tip : (n, 2) float -- tip position after the motion.
+    seen : (n, 3) float -- joint x, y and probe angle theta after the motion as the joint
+        position sensors report them (:mod:`core2d.sim.sensor`; ``after`` with a perfect
+        sensor). ``before`` / ``after`` are the simulator's true postures; what a robot
+        knows of where it has been is ``seen``. theta is unwrapped as ``after``'s (an
+        encoder counts turns).
     tip_contact : (n, 2) float -- the tip's contact point after (NaN: none).
     contacts : (n,) int16 -- contacts on the probe after (tip included).
     other_start : (n + 1,) int64 -- row k's non-tip contacts are
@@ -57,6 +62,7 @@ class MotionLog:
     before: np.ndarray = field(default_factory=lambda: _empty(3))
     after: np.ndarray = field(default_factory=lambda: _empty(3))
     tip: np.ndarray = field(default_factory=lambda: _empty(2))
+    seen: np.ndarray = field(default_factory=lambda: _empty(3))
     tip_contact: np.ndarray = field(default_factory=lambda: _empty(2))
     contacts: np.ndarray = field(default_factory=lambda: _empty(dtype=np.int16))
     other_start: np.ndarray = field(default_factory=lambda: np.zeros(1, dtype=np.int64))

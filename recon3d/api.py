@@ -274,8 +274,8 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     # each slice's filled region is closed in this process as the slice comes back (it only
     # waits for the workers); the reconstruction takes them as they are
     plan = resolve(config, diagonal(mesh))
-    snap, noise, jitter = closure_lengths(plan.eps, plan.tol, config.noise, config.taxel)
-    regions = RegionsAsSensed(None if config.slices == "auto" else snap, noise, jitter)
+    lengths = closure_lengths(plan.eps, plan.tol, config.noise, config.taxel)
+    regions = RegionsAsSensed(None if config.slices == "auto" else lengths)
 
     def sensed_one(srun: SliceRun) -> None:
         regions.add(srun)

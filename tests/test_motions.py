@@ -98,6 +98,26 @@ def test_the_recorder_changes_no_decision():
     assert bare.stats.motions == logged.stats.motions == len(rec.log())
 
 
+def test_a_perfect_sensor_reports_the_postures_themselves(logged):
+    """``seen`` (what the joint sensors reported) is ``after`` to the bit without noise."""
+    np.testing.assert_array_equal(logged.motions.seen, logged.motions.after)
+
+
+def test_a_noisy_sensor_reports_postures_off_by_its_noise():
+    """With sigma = 0.05 on the joint position (sigma / L on its angle) the reported postures
+    scatter about the true ones by about sigma, the angle unwrapped as the true one's."""
+    from core2d.sim.sensor import SensorModel
+
+    contact, ws, eps = _scene()
+    res = sense_slice(contact, ws, eps, sensor=SensorModel(noise=0.05, seed=3))
+    log = res.motions
+    L = np.hypot(*(log.tip - log.after[:, :2]).T)[0]
+    off = log.seen - log.after
+    assert 0.03 < np.std(off[:, :2]) < 0.07  # about sigma per axis
+    assert 0.03 < np.std(off[:, 2]) * L < 0.07  # about sigma / L radians
+    assert np.abs(off[:, 2]).max() < 8 * 0.05 / L  # no turn lost or added
+
+
 def test_finger_probing_is_logged_too():
     contact, ws, eps = ExactContact(block(HILL)), WORKSPACE, 1.0
     res = sense_slice(contact, ws, eps, method="finger", directions=4, spacing=4.0)

@@ -12,14 +12,14 @@ from recon3d.config import RunConfig
 from recon3d.sensing.regions import RegionsAsSensed
 from recon3d.spellings import make_config
 from recon3d.surface import reconstruct
-from recon3d.surface.closure import result_region
+from recon3d.surface.closure import closure_lengths, result_region
 
 reconstruct_module = importlib.import_module("recon3d.surface.reconstruct")  # not the function
 
 
 def _fresh(run):
-    return [[result_region(s.result, 2 * run.tol, run.config.noise * run.eps)
-             for s in fam.slices] for fam in run.families]
+    lengths = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
+    return [[result_region(s.result, *lengths) for s in fam.slices] for fam in run.families]
 
 
 def _same_region(a, b):
@@ -83,8 +83,10 @@ def test_another_snap_or_an_unseen_slice(counted_run):
     res, _ = counted_run
     run = res.sensing
     assert RegionsAsSensed(None).for_run(run) is None  # adaptive plans: nothing given
-    assert RegionsAsSensed(3.0 * run.tol).for_run(run) is None  # not the run's snap
-    partial = RegionsAsSensed(2.0 * run.tol)
+    lengths = closure_lengths(run.eps, run.tol)
+    assert RegionsAsSensed(lengths._replace(snap=3.0 * run.tol)).for_run(run) is None
+    assert RegionsAsSensed(lengths._replace(jitter=0.1)).for_run(run) is None  # not its sensor
+    partial = RegionsAsSensed(lengths)
     partial.add(run.families[0].slices[1])
     got = partial.for_run(run)
     for a, b in zip(sum(got, []), sum(_fresh(run), []), strict=True):

@@ -125,6 +125,7 @@ class Recorder:
                                           np.array(cols[k + 1], dtype=np.float64)])
                          for k in (3, 5))
         tip = after[:, :2] + L * np.stack([np.cos(after[:, 2]), np.sin(after[:, 2])], axis=1)
+        seen = _seen(cols[7], after)
         none, trace = (math.nan, math.nan), _KIND["trace"]
         tip_c, counts, blocked = [], [], []
         events, others, start = [], [], [0]
@@ -140,9 +141,19 @@ class Recorder:
             events.append(TRACE_CASES.get(ev, ev) if k == trace else ev)
         return MotionLog(
             kind=kind.astype(np.int8), phase=phase.astype(np.int8), area=area.astype(np.int32),
-            event=np.array(events, dtype="<U12"), before=before, after=after, tip=tip,
+            event=np.array(events, dtype="<U12"), before=before, after=after, tip=tip, seen=seen,
             tip_contact=np.array(tip_c, dtype=np.float64).reshape(n, 2),
             contacts=np.array(counts, dtype=np.int16), other_start=np.array(start, dtype=np.int64),
             other=np.array(others, dtype=np.float64).reshape(-1, 2),
             blocked=np.array(blocked, dtype=bool).reshape(n, 2),
             torque=np.array(cols[8], dtype=np.int8))
+
+
+def _seen(readings, after: np.ndarray) -> np.ndarray:
+    """(n, 3) float: the reported joint x, y and angle after each motion; the angle is
+    ``after``'s plus the reading's error, wrapped to (-pi, pi] (an encoder counts turns)."""
+    joint = np.array([r.joint for r in readings], dtype=np.float64).reshape(-1, 2)
+    direction = np.array([r.direction for r in readings], dtype=np.float64).reshape(-1, 2)
+    err = np.arctan2(direction[:, 1], direction[:, 0]) - after[:, 2]
+    # a perfect sensor's error is 0 to the bit (tested): atan2 of the angle's own cos and sin
+    return np.column_stack([joint, after[:, 2] + (err + np.pi) % (2 * np.pi) - np.pi])

@@ -28,6 +28,10 @@ opening with no segment, a piece can be stray. The rule, in order:
    postures swept is free space and left unfilled (:func:`swept_faces`): the
    noisy pieces' loose ends are bridged closest first, and a bridge across a
    slot's mouth would fill the slot the probe went down.
+5. **carve** (a noisy sensor only) -- what the probe's motions swept, away from the
+   sensed pieces, is cut from what is left (:func:`recon3d.surface.sweep.carve`): a
+   face the postures swept only in part (a chamber behind a neck, a slot merged with
+   the body through a gap in a wall) keeps its material, less the swept part.
 
 Examples
 --------
@@ -39,6 +43,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -47,9 +52,11 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from core2d.resolution import Resolution
+from recon3d.surface.sweep import carve, probe_length, swept_areas
 
 __all__ = ["Piece", "SliceRegion", "slice_region", "result_region", "probe_postures",
-           "swept_faces", "closure_lengths", "sample_pieces", "KIND_LABEL", "SWEPT_SHARE"]
+           "swept_faces", "closure_lengths", "ClosureLengths", "sample_pieces", "KIND_LABEL",
+           "SWEPT_SHARE"]
 
 KIND_LABEL = {"W1": 1, "W2": 2, "W3": 3, "unknown": 4, "bridge": 4}
 """Surface label of the faces nearest to a piece of each kind."""
@@ -139,7 +146,8 @@ def _bridges(node, where) -> list[Piece]:
 
 
 def slice_region(w1, w2, w3, unknown, snap: float, free=None,
-                 margin: float | None = None, jitter: float = 0.0) -> SliceRegion:
+                 margin: float | None = None, jitter: float = 0.0, swept=None,
+                 close: float = 0.0, depth: float = 0.0) -> SliceRegion:
     """Close the sensed pieces of one slice and fill them (see module doc).
 
     Parameters
@@ -154,15 +162,21 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     jitter : float -- how far two readings of one point may lie apart (a noisy sensor's,
         :attr:`core2d.resolution.Resolution.jitter`); above 0, with ``free``, faces the
         postures swept are left unfilled (step 4, :func:`swept_faces`).
+    swept : (s,) shapely geometries, optional -- the areas the probe's motions swept
+        (:func:`recon3d.surface.sweep.swept_areas`); with ``jitter`` above 0, cut from the
+        region away from the sensed pieces (step 5); None: no step 5.
+    close : float -- step 5's closing radius: gaps narrower than ``2 close`` between the
+        swept areas count as swept.
+    depth : float -- step 0 counts a posture whose tip lies past the chord's line by more
+        than this only (a noisy sensor's reported posture: its error; 0: any crossing).
 
     Returns
     -------
     SliceRegion
     """
     if free is not None and len(free) and len(unknown):
-        unknown = [c for c, gone in zip(unknown, _pierced(unknown, free,
-                                                          snap if margin is None else margin))
-                   if not gone]
+        gone = _pierced(unknown, free, snap if margin is None else margin, depth)
+        unknown = [c for c, g in zip(unknown, gone) if not g]
     pieces = _raw_pieces(w1, w2, w3, unknown)
     pieces, node, where = _snap(pieces, snap)
     pieces = pieces + _bridges(node, where)
@@ -179,8 +193,14 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     geom = shapely.union_all(faces)
     if geom.geom_type not in ("Polygon", "MultiPolygon"):  # empty collection
         geom = shapely.Polygon()
+    if jitter > 0 and swept is not None:
+        sensed = [p.points for p in pieces if p.kind in ("W1", "W2", "W3")]
+        geom = carve(geom, sensed, swept, snap, jitter, close)
     return SliceRegion(geom, tuple(pieces))
 
+
+_TIP_ERRORS = 3.0 * np.sqrt(2.0)
+"""Step 0's depth in the sensor's standard deviations (:func:`result_region`)."""
 
 SWEPT_SHARE = 0.5
 """A face whose core the probe's postures sweep more than this share of is free space."""
@@ -231,8 +251,10 @@ def swept_faces(faces, free, snap: float, jitter: float) -> np.ndarray:
     return out
 
 
-def _pierced(chords, free, margin: float) -> np.ndarray:
-    """(c,) bool: which chords a posture crosses farther than ``margin`` from both ends."""
+def _pierced(chords, free, margin: float, depth: float = 0.0) -> np.ndarray:
+    """(c,) bool: which chords a posture crosses farther than ``margin`` from both ends, its
+    tip farther than ``depth`` from the chord's line (> 0: a posture reported with noise
+    that crosses a chord by less than its error may not have crossed it)."""
     chords = np.asarray(chords, dtype=np.float64).reshape(-1, 2, 2)
     free = np.asarray(free, dtype=np.float64).reshape(-1, 2, 2)
     free = free[np.isfinite(free).all(axis=(1, 2))]
@@ -247,43 +269,76 @@ def _pierced(chords, free, margin: float) -> np.ndarray:
     u = d[keep] / length[keep, None]
     mid = shapely.linestrings(np.stack([chords[keep, 0] + margin * u,
                                         chords[keep, 1] - margin * u], axis=1))
-    hit, _ = shapely.STRtree(shapely.linestrings(free)).query(mid, predicate="intersects")
+    hit, by = shapely.STRtree(shapely.linestrings(free)).query(mid, predicate="intersects")
+    if depth > 0:  # the tip past the chord's line by more than a reading's error
+        a = chords[keep, 0][hit]
+        d = free[by, 1] - a
+        past = np.abs(u[hit, 0] * d[:, 1] - u[hit, 1] * d[:, 0])
+        hit = hit[past > depth]
     out[np.flatnonzero(keep)[np.unique(hit)]] = True
     return out
 
 
 def probe_postures(motions) -> np.ndarray:
     """(p, 2, 2) float: the probe, joint to tip, after every motion of a slice's
-    :class:`core2d.motionlog.MotionLog` (none without a log)."""
+    :class:`core2d.motionlog.MotionLog` as its joint sensors reported it (``seen``; the
+    logged ``after`` when the log has no reports; none without a log)."""
     if motions is None or not len(motions):
         return np.zeros((0, 2, 2))
-    return np.stack([np.asarray(motions.after, dtype=np.float64)[:, :2],
-                     np.asarray(motions.tip, dtype=np.float64)], axis=1)
+    if len(motions.seen) != len(motions):
+        return np.stack([np.asarray(motions.after, dtype=np.float64)[:, :2],
+                         np.asarray(motions.tip, dtype=np.float64)], axis=1)
+    seen = np.asarray(motions.seen, dtype=np.float64)
+    tip = seen[:, :2] + probe_length(motions) * np.stack([np.cos(seen[:, 2]),
+                                                         np.sin(seen[:, 2])], axis=1)
+    return np.stack([seen[:, :2], tip], axis=1)
+
+
+class ClosureLengths(NamedTuple):
+    """The lengths of a run's closure (:func:`closure_lengths`)."""
+
+    snap: float
+    """End points closer than this are joined (``2 tol``)."""
+    noise: float
+    """The sensor's standard deviation (0: the paper's perfect sensing)."""
+    jitter: float
+    """How far two readings of one point may lie apart (:class:`core2d.resolution.Resolution`)."""
+    close: float
+    """Step 5's closing radius, half the W2 distance ``eps + jitter``: gaps between swept
+    areas narrower than the W2 distance are below the method's resolution (§4.3: two
+    contacts closer than eps are joined by a segment, W2)."""
 
 
 def closure_lengths(eps: float, tol: float, noise: float = 0.0,
-                    taxel: float = 0.0) -> tuple[float, float, float]:
-    """``(snap, noise, jitter)`` of a run's closure, lengths: snap ``2 tol``, the sensor's
-    standard deviation and the jitter of its readings (:class:`core2d.resolution.Resolution`)
-    from ``noise`` and ``taxel`` given in eps (0, 0: the paper's perfect sensing).
+                    taxel: float = 0.0) -> ClosureLengths:
+    """The :class:`ClosureLengths` of a run with ``eps`` and ``tol`` (lengths) and a sensor of
+    ``noise`` and ``taxel`` given in eps (0, 0: the paper's perfect sensing).
 
     >>> closure_lengths(1.0, 0.05)
-    (0.1, 0.0, 0.0)
+    ClosureLengths(snap=0.1, noise=0.0, jitter=0.0, close=0.5)
     >>> [round(x, 3) for x in closure_lengths(2.0, 0.1, noise=0.3, taxel=0.25)]
-    [0.2, 0.6, 3.046]
+    [0.2, 0.6, 3.046, 2.523]
     """
     res = Resolution.of(eps, tol, noise=noise * eps, taxel=taxel * eps)
-    return 2.0 * tol, noise * eps, res.jitter
+    return ClosureLengths(2.0 * tol, noise * eps, res.jitter, (eps + res.jitter) / 2.0)
 
 
-def result_region(result, snap: float, noise: float = 0.0, jitter: float = 0.0) -> SliceRegion:
+def result_region(result, snap: float, noise: float = 0.0, jitter: float = 0.0,
+                  close: float = 0.0) -> SliceRegion:
     """:func:`slice_region` of a :class:`core2d.SliceResult`: its pieces, less the unknown
-    chords its motion log's postures went through (margin ``snap + 3 noise``, ``noise`` the
-    sensor's standard deviation, a length), less the faces they swept when ``jitter`` (the
-    sensor's, a length) is above 0."""
+    chords its motion log's reported postures went through (margin ``snap + 3 noise`` from
+    the ends, ``noise`` the sensor's standard deviation, a length; the tip past the chord by
+    more than ``3 sqrt(2) noise``, three standard deviations of a reported tip across a line:
+    the joint's error plus the angle's, ``noise / L`` radians over the probe's length); when
+    ``jitter`` (the sensor's, a length) is above 0, less the faces they swept and what its
+    motions swept (closing radius ``close``)."""
+    motions = getattr(result, "motions", None)
+    swept = None
+    if jitter > 0 and motions is not None and len(motions):
+        swept = swept_areas(motions, probe_length(motions), snap)
     return slice_region(result.w1, result.w2, result.w3, result.unknown, snap,
-                        probe_postures(getattr(result, "motions", None)),
-                        snap + 3.0 * noise, jitter)
+                        probe_postures(motions), snap + 3.0 * noise, jitter, swept, close,
+                        _TIP_ERRORS * noise)
 
 
 def sample_pieces(pieces, spacing: float) -> tuple[np.ndarray, np.ndarray]:

@@ -74,11 +74,11 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
-    snap, noise, jitter = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
+    lengths = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
     given, regions, solids, notes = regions, [], [], []
     for f, fam in enumerate(run.families):
         regs = (list(given[f]) if given is not None else
-                [result_region(s.result, snap, noise, jitter) for s in fam.slices])
+                [result_region(s.result, *lengths) for s in fam.slices])
         regions.append(regs)
         if len(fam.slices) < 2:
             solids.append(None)

@@ -1,0 +1,174 @@
+"""What the probe's motions swept, and the noisy closure's carve by it
+(recon3d.surface.sweep; step 5 of recon3d.surface.closure)."""
+import numpy as np
+import pytest
+import shapely
+
+from core2d.motionlog import KINDS, MotionLog
+from recon3d.surface.closure import closure_lengths, result_region, slice_region
+from recon3d.surface.sweep import carve, probe_length, swept_areas
+
+L = 2.0
+K = {k: i for i, k in enumerate(KINDS)}
+
+
+def _log(kinds, before, after, seen=None):
+    """A motion log of rows ``kinds`` with postures (x, y, theta) before and after."""
+    before, after = (np.asarray(x, dtype=np.float64).reshape(-1, 3) for x in (before, after))
+    tip = after[:, :2] + L * np.column_stack([np.cos(after[:, 2]), np.sin(after[:, 2])])
+    return MotionLog(kind=np.array([K[k] for k in kinds], np.int8), before=before, after=after,
+                     seen=after if seen is None else np.asarray(seen, float).reshape(-1, 3),
+                     tip=tip)
+
+
+Q = np.pi / 2
+
+
+@pytest.mark.parametrize("kind, before, after, area, inside, outside", [
+    # a quarter turn ccw about the joint: the sector of radius L, pi L^2 / 4
+    ("swing", (0, 0, 0), (0, 0, Q), np.pi, (0.7, 0.7), (-0.5, 0.5)),
+    ("turn", (0, 0, 0), (0, 0, -Q), np.pi, (0.7, -0.7), (0.7, 0.7)),
+    # a quarter turn about the tip (2, 0): the joint goes from (0, 0) to (2, -2)
+    ("pivot", (0, 0, 0), (2, -2, Q), np.pi, (1.3, -0.7), (0.7, -1.3 + 2.0)),
+    # the joint 1 up with t kept: the parallelogram L x 1
+    ("translate", (0, 0, 0), (0, 1, 0), 2.0, (1.0, 0.5), (1.0, 1.5)),
+])
+def test_each_kind_sweeps_its_area(kind, before, after, area, inside, outside):
+    got = swept_areas(_log([kind], before, after), L, sag=1e-5)[0]
+    assert got.geom_type == "Polygon" and got.is_valid
+    assert got.area == pytest.approx(area, rel=1e-4)
+    assert got.area <= area  # chords lie inside the arc
+    assert got.contains(shapely.Point(inside)) and not got.intersects(shapely.Point(outside))
+
+
+@pytest.mark.parametrize("kind, length", [("insert", 3.0), ("approach", L), ("trace", L)])
+def test_the_other_kinds_sweep_a_line(kind, length):
+    """An insertion along t sweeps from the joint before to the tip after; a transfer or a
+    compliant trace (their paths are not logged) only the posture after."""
+    got = swept_areas(_log([kind], (0, 0, 0), (1, 0, 0)), L, sag=1e-5)[0]
+    assert got.geom_type == "LineString" and got.length == pytest.approx(length)
+    assert got.coords[-1] == pytest.approx((3.0, 0.0))
+
+
+def test_a_full_turn_or_more_sweeps_the_disc_once():
+    got = swept_areas(_log(["swing"], (0, 0, 0), (0, 0, 3 * np.pi)), L, sag=1e-5)[0]
+    assert got.is_valid and got.area == pytest.approx(np.pi * L * L, rel=1e-4)
+
+
+def test_the_reported_postures_are_swept_not_the_true_ones():
+    """Two swings; the joint sensor reported the first one's end at 45 degrees, not 90: the
+    first sector ends there and the second starts there (what the robot knows)."""
+    log = _log(["swing", "swing"], [(0, 0, 0), (0, 0, Q)], [(0, 0, Q), (0, 0, np.pi)],
+               seen=[(0, 0, Q / 2), (0, 0, np.pi)])
+    first, second = swept_areas(log, L, sag=1e-5)
+    assert first.area == pytest.approx(np.pi / 2, rel=1e-4)
+    assert second.area == pytest.approx(np.pi * 3 / 2, rel=1e-4)
+    assert probe_length(log) == pytest.approx(L)
+
+
+@pytest.fixture(scope="module")
+def fig18():
+    import recon3d
+
+    return recon3d.run("fig18_overhangs", slices=2, jobs=1).sensing
+
+
+def _section(s):
+    out = shapely.Polygon()
+    for loop, hole in zip(s.slice.loops, s.slice.holes):
+        out = out.difference(shapely.Polygon(loop)) if hole else out.union(shapely.Polygon(loop))
+    return out
+
+
+def test_a_perfect_sensors_motions_never_sweep_the_section(fig18):
+    """Against the true section (shapely, from the slice's loops): with a perfect sensor the
+    reported postures are the true ones, and no swept area enters the material, while the
+    sectors and parallelograms cover a good part of the band 2 eps wide around it (0.36 on
+    these slices; an insertion sweeps a line, no area)."""
+    for s in fig18.slices:
+        m = s.result.motions
+        swept = swept_areas(m, probe_length(m), 2 * fig18.tol)
+        kinds = np.asarray(m.kind)
+        assert {K["swing"], K["turn"], K["pivot"], K["insert"]} <= set(kinds.tolist())
+        truth = _section(s)
+        assert shapely.area(shapely.intersection(swept, truth)).max() < 1e-9
+        band = shapely.buffer(truth, 2 * fig18.eps).difference(truth)
+        free = shapely.union_all(swept[shapely.area(swept) > 0])
+        assert free.intersection(band).area > 0.25 * band.area
+
+
+# a block 20 x 20 with a neck 2 wide from its top down into a round chamber (radius 5 about
+# (10, 8)); the outline and the neck's walls were traced down to y = 12.9, the chamber's lower
+# arc traced and closed by a W3 lid; the upper chamber is never touchable (its walls lie
+# behind the neck), so the closure bridges the neck's ends and fills the chamber
+CHAMBER = shapely.Point(10.0, 8.0).buffer(5.0, quad_segs=64)
+TRUTH = shapely.box(0, 0, 20, 20).difference(shapely.box(9, 12.5, 11, 20)).difference(CHAMBER)
+OUTLINE = np.array([[11, 12.9], [11, 20], [20, 20], [20, 0], [0, 0], [0, 20], [9, 20],
+                    [9, 12.9]], dtype=float)
+_ARC = np.radians(np.linspace(200.0, 340.0, 57))
+ARC = np.column_stack([10 + 5 * np.cos(_ARC), 8 + 5 * np.sin(_ARC)])
+LID = ARC[[-1, 0]]
+SNAP, JITTER = 0.05, 0.3
+
+
+def _fan(reach=5.0, step=2.5):
+    """Insertions from (10, 14) in the neck to the chamber's wall, ``step`` degrees apart,
+    their tips ``reach`` from the chamber's centre (past 5: into the material)."""
+    a = np.radians(np.arange(200.0, 340.0 + 1e-9, step))
+    tips = np.column_stack([10 + reach * np.cos(a), 8 + reach * np.sin(a)])
+    return shapely.linestrings(np.stack([np.broadcast_to([10.0, 14.0], tips.shape), tips], 1))
+
+
+def _hull(fan):
+    """Area of the fan's hull in the chamber, farther than snap + jitter from the pieces."""
+    sensed = shapely.union_all([shapely.LineString(x) for x in (OUTLINE, ARC, LID)])
+    return shapely.convex_hull(shapely.union_all(fan)).intersection(CHAMBER).difference(
+        shapely.buffer(sensed, SNAP + JITTER)).area
+
+
+def _chamber(swept, jitter=JITTER, close=0.5):
+    return slice_region([OUTLINE, ARC], [], [LID], [], SNAP, jitter=jitter, swept=swept,
+                        close=close).geometry
+
+
+def test_the_chamber_filled_behind_its_neck_is_carved_where_the_probe_went():
+    """Against the true section: without the carve the whole chamber is filled; with it, the
+    fan's hull in the chamber, away from the sensed arc and lid, is cut, and no material is."""
+    fan = _fan()
+    blind = _chamber(None)
+    assert blind.difference(TRUTH).area == pytest.approx(CHAMBER.area, rel=0.01)
+    got = _chamber(fan)
+    assert TRUTH.difference(got).area < 1e-9  # no material lost
+    cut = blind.area - got.area
+    assert cut > 0.95 * _hull(fan)
+    assert cut < CHAMBER.area
+
+
+def test_gaps_between_swept_areas_narrower_than_the_w2_distance_count_as_swept():
+    """Insertions 5 degrees apart are lines (widened by snap): alone they cut strips 0.1
+    wide and leave slivers of material between them; closed by 0.5 (gaps up to 1.0, the
+    fan's widest being 0.87) they cut the fan's whole hull."""
+    fan, blind = _fan(step=5.0), _chamber(None)
+    strips = blind.area - _chamber(fan, close=0.0).area
+    whole = blind.area - _chamber(fan, close=0.5).area
+    assert whole > 0.95 * _hull(fan)
+    assert strips < 0.6 * whole
+
+
+def test_postures_a_reading_puts_inside_a_sensed_wall_carve_none_of_it():
+    """Tips reported 0.2 inside the chamber's traced arc (a reading's scatter, under snap +
+    jitter = 0.35): the material behind the arc stays whole."""
+    got = _chamber(_fan(reach=5.2))
+    assert TRUTH.difference(got).area < 1e-9
+
+
+def test_a_perfect_sensor_is_not_carved():
+    """jitter 0 (the paper's sensing): the swept areas change nothing."""
+    assert _chamber(_fan(), jitter=0.0).symmetric_difference(_chamber(None)).area < 1e-12
+
+
+def test_carve_leaves_a_region_alone_when_nothing_swept_reaches_it():
+    box = shapely.box(0, 0, 1, 1)
+    far = shapely.linestrings([[[5.0, 5.0], [6.0, 5.0]]])
+    assert carve(box, [], far, SNAP, JITTER, 0.5).equals(box)
+    assert carve(box, [], np.zeros(0, dtype=object), SNAP, JITTER, 0.5).equals(box)

@@ -120,23 +120,3 @@ def test_a_chord_no_posture_crosses_keeps_its_fill_and_a_touch_at_an_end_is_no_c
     assert "unknown" in [p.kind for p in reg.pieces]
     assert reg.geometry.difference(truth).area > 5.0
 
-
-@pytest.mark.parametrize("past, depth, pierced", [
-    (0.2, 0.0, True),   # a perfect sensor: any crossing
-    (0.2, 0.5, False),  # a noisy report past the chord by less than its error
-    (0.8, 0.5, True),   # past it by more: the probe went through
-])
-def test_a_noisy_posture_crosses_a_chord_only_past_its_error(past, depth, pierced):
-    """A posture down the first slot whose tip ends ``past`` beyond the chord's line (the
-    chord from the slot's floor to the second slot's wall, 0.55 of the way across the slot
-    at x = 5.5): it counts as crossing only farther than ``depth`` from the line."""
-    outline, chord, _, truth = _comb_slice()
-    a, b = chord
-    u = (b - a) / np.hypot(*(b - a))
-    n = np.array([u[1], -u[0]])  # the normal pointing down, away from the joint above
-    on = a + u * (0.5 / u[0])  # the chord's point at x = 5.5
-    tip = on + past * n
-    free = np.array([[[tip[0], 40.0], tip]])
-    reg = slice_region([outline], [], [], [chord], snap=1e-6, free=free, margin=0.05,
-                       depth=depth)
-    assert ("unknown" not in [p.kind for p in reg.pieces]) == pierced

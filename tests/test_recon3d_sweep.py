@@ -5,7 +5,7 @@ import pytest
 import shapely
 
 from core2d.motionlog import KINDS, MotionLog
-from recon3d.surface.closure import closure_lengths, result_region, slice_region
+from recon3d.surface.closure import probe_postures, slice_region
 from recon3d.surface.sweep import carve, probe_length, swept_areas
 
 L = 2.0
@@ -71,6 +71,32 @@ def fig18():
     import recon3d
 
     return recon3d.run("fig18_overhangs", slices=2, jobs=1).sensing
+
+
+def test_a_perfect_sensors_reported_postures_are_the_logged_ones(fig18):
+    """The compiled Embree engine's readings (its t differs from (cos, sin) of theta in the
+    last digit on these slices): ``seen`` is ``after`` to the bit, and the closure's postures
+    are the logged joints and tips."""
+    for s in fig18.slices:
+        log = s.result.motions
+        np.testing.assert_array_equal(log.seen, log.after)
+        np.testing.assert_array_equal(probe_postures(log),
+                                      np.stack([log.after[:, :2], log.tip], axis=1))
+
+
+def test_reported_postures_without_error_are_the_logged_tips_to_the_bit():
+    """Tips logged with lengths that differ in the last digits (rounding): without a
+    reading's error the closure's postures are exactly the logged ones; with one, the tip
+    moves with the joint and the angle."""
+    log = _log(["swing"] * 3, np.zeros((3, 3)), [(0, 0, 0.3), (1, 0, 1.2), (2, 1, -2.0)])
+    log.tip[:] += np.array([[3e-15, 0.0], [0.0, -2e-15], [1e-15, 1e-15]])
+    np.testing.assert_array_equal(probe_postures(log),
+                                  np.stack([log.after[:, :2], log.tip], axis=1))
+    log.seen = log.after + np.array([0.1, -0.2, 0.05])
+    got = probe_postures(log)
+    np.testing.assert_allclose(got[:, 0], log.seen[:, :2])
+    np.testing.assert_allclose(got[:, 1], log.seen[:, :2] + L * np.column_stack(
+        [np.cos(log.seen[:, 2]), np.sin(log.seen[:, 2])]), atol=1e-12)
 
 
 def _section(s):

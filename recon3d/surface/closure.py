@@ -147,7 +147,7 @@ def _bridges(node, where) -> list[Piece]:
 
 def slice_region(w1, w2, w3, unknown, snap: float, free=None,
                  margin: float | None = None, jitter: float = 0.0, swept=None,
-                 close: float = 0.0, depth: float = 0.0) -> SliceRegion:
+                 close: float = 0.0) -> SliceRegion:
     """Close the sensed pieces of one slice and fill them (see module doc).
 
     Parameters
@@ -167,15 +167,13 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
         region away from the sensed pieces (step 5); None: no step 5.
     close : float -- step 5's closing radius: gaps narrower than ``2 close`` between the
         swept areas count as swept.
-    depth : float -- step 0 counts a posture whose tip lies past the chord's line by more
-        than this only (a noisy sensor's reported posture: its error; 0: any crossing).
 
     Returns
     -------
     SliceRegion
     """
     if free is not None and len(free) and len(unknown):
-        gone = _pierced(unknown, free, snap if margin is None else margin, depth)
+        gone = _pierced(unknown, free, snap if margin is None else margin)
         unknown = [c for c, g in zip(unknown, gone) if not g]
     pieces = _raw_pieces(w1, w2, w3, unknown)
     pieces, node, where = _snap(pieces, snap)
@@ -198,9 +196,6 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
         geom = carve(geom, sensed, swept, snap, jitter, close)
     return SliceRegion(geom, tuple(pieces))
 
-
-_TIP_ERRORS = 3.0 * np.sqrt(2.0)
-"""Step 0's depth in the sensor's standard deviations (:func:`result_region`)."""
 
 SWEPT_SHARE = 0.5
 """A face whose core the probe's postures sweep more than this share of is free space."""
@@ -251,10 +246,8 @@ def swept_faces(faces, free, snap: float, jitter: float) -> np.ndarray:
     return out
 
 
-def _pierced(chords, free, margin: float, depth: float = 0.0) -> np.ndarray:
-    """(c,) bool: which chords a posture crosses farther than ``margin`` from both ends, its
-    tip farther than ``depth`` from the chord's line (> 0: a posture reported with noise
-    that crosses a chord by less than its error may not have crossed it)."""
+def _pierced(chords, free, margin: float) -> np.ndarray:
+    """(c,) bool: which chords a posture crosses farther than ``margin`` from both ends."""
     chords = np.asarray(chords, dtype=np.float64).reshape(-1, 2, 2)
     free = np.asarray(free, dtype=np.float64).reshape(-1, 2, 2)
     free = free[np.isfinite(free).all(axis=(1, 2))]
@@ -269,28 +262,26 @@ def _pierced(chords, free, margin: float, depth: float = 0.0) -> np.ndarray:
     u = d[keep] / length[keep, None]
     mid = shapely.linestrings(np.stack([chords[keep, 0] + margin * u,
                                         chords[keep, 1] - margin * u], axis=1))
-    hit, by = shapely.STRtree(shapely.linestrings(free)).query(mid, predicate="intersects")
-    if depth > 0:  # the tip past the chord's line by more than a reading's error
-        a = chords[keep, 0][hit]
-        d = free[by, 1] - a
-        past = np.abs(u[hit, 0] * d[:, 1] - u[hit, 1] * d[:, 0])
-        hit = hit[past > depth]
+    hit, _ = shapely.STRtree(shapely.linestrings(free)).query(mid, predicate="intersects")
     out[np.flatnonzero(keep)[np.unique(hit)]] = True
     return out
 
 
 def probe_postures(motions) -> np.ndarray:
     """(p, 2, 2) float: the probe, joint to tip, after every motion of a slice's
-    :class:`core2d.motionlog.MotionLog` as its joint sensors reported it (``seen``; the
-    logged ``after`` when the log has no reports; none without a log)."""
+    :class:`core2d.motionlog.MotionLog` as its joint sensors reported it (``seen``; none
+    without a log)."""
     if motions is None or not len(motions):
         return np.zeros((0, 2, 2))
-    if len(motions.seen) != len(motions):
-        return np.stack([np.asarray(motions.after, dtype=np.float64)[:, :2],
-                         np.asarray(motions.tip, dtype=np.float64)], axis=1)
-    seen = np.asarray(motions.seen, dtype=np.float64)
-    tip = seen[:, :2] + probe_length(motions) * np.stack([np.cos(seen[:, 2]),
-                                                         np.sin(seen[:, 2])], axis=1)
+    seen, after = (np.asarray(x, dtype=np.float64) for x in (motions.seen, motions.after))
+
+    def unit(theta):
+        return np.stack([np.cos(theta), np.sin(theta)], axis=1)
+
+    # the logged tip moved by the reading's errors: a perfect sensor's tips are the logged
+    # ones to the bit (the joint plus L t would differ in the last digits)
+    tip = (np.asarray(motions.tip, dtype=np.float64) + (seen[:, :2] - after[:, :2])
+           + probe_length(motions) * (unit(seen[:, 2]) - unit(after[:, 2])))
     return np.stack([seen[:, :2], tip], axis=1)
 
 
@@ -327,18 +318,15 @@ def result_region(result, snap: float, noise: float = 0.0, jitter: float = 0.0,
                   close: float = 0.0) -> SliceRegion:
     """:func:`slice_region` of a :class:`core2d.SliceResult`: its pieces, less the unknown
     chords its motion log's reported postures went through (margin ``snap + 3 noise`` from
-    the ends, ``noise`` the sensor's standard deviation, a length; the tip past the chord by
-    more than ``3 sqrt(2) noise``, three standard deviations of a reported tip across a line:
-    the joint's error plus the angle's, ``noise / L`` radians over the probe's length); when
-    ``jitter`` (the sensor's, a length) is above 0, less the faces they swept and what its
-    motions swept (closing radius ``close``)."""
+    the ends, ``noise`` the sensor's standard deviation, a length); when ``jitter`` (the
+    sensor's, a length) is above 0, less the faces they swept and what its motions swept
+    (closing radius ``close``)."""
     motions = getattr(result, "motions", None)
     swept = None
     if jitter > 0 and motions is not None and len(motions):
         swept = swept_areas(motions, probe_length(motions), snap)
     return slice_region(result.w1, result.w2, result.w3, result.unknown, snap,
-                        probe_postures(motions), snap + 3.0 * noise, jitter, swept, close,
-                        _TIP_ERRORS * noise)
+                        probe_postures(motions), snap + 3.0 * noise, jitter, swept, close)
 
 
 def sample_pieces(pieces, spacing: float) -> tuple[np.ndarray, np.ndarray]:

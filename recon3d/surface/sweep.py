@@ -62,7 +62,7 @@ def probe_length(motions) -> float:
 def _postures(motions) -> tuple[np.ndarray, np.ndarray]:
     """(n, 3) before and after: the reported postures (the first motion's before is the
     start, which the robot commanded)."""
-    after = motions.seen if len(motions.seen) == len(motions) else motions.after
+    after = np.asarray(motions.seen, dtype=np.float64)
     before = np.vstack([motions.before[:1], after[:-1]])
     return before, after
 

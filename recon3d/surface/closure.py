@@ -24,14 +24,11 @@ opening with no segment, a piece can be stray. The rule, in order:
    filled (the probe cannot see them), stray pieces outside add at most a
    sliver between the piece and its bridge, and pieces inside the material
    change nothing.
-4. **swept faces** (a noisy sensor only) -- a face whose core the probe's
-   postures swept is free space and left unfilled (:func:`swept_faces`): the
-   noisy pieces' loose ends are bridged closest first, and a bridge across a
-   slot's mouth would fill the slot the probe went down.
-5. **carve** (a noisy sensor only) -- what the probe's motions swept, away from the
-   sensed pieces, is cut from what is left (:func:`recon3d.surface.sweep.carve`): a
-   face the postures swept only in part (a chamber behind a neck, a slot merged with
-   the body through a gap in a wall) keeps its material, less the swept part.
+4. **carve** (a noisy sensor only) -- what the probe's motions swept, away from the
+   sensed pieces, is cut from the region (:func:`recon3d.surface.sweep.carve`): the
+   noisy pieces' loose ends are bridged closest first, and a bridge across a slot's
+   mouth would fill the slot the probe went down; a chamber behind a neck, or a slot
+   merged with the body through a gap in a wall, keeps its material less the swept part.
 
 Examples
 --------
@@ -55,8 +52,7 @@ from core2d.resolution import Resolution
 from recon3d.surface.sweep import carve, probe_length, swept_areas
 
 __all__ = ["Piece", "SliceRegion", "slice_region", "result_region", "probe_postures",
-           "swept_faces", "closure_lengths", "ClosureLengths", "sample_pieces", "KIND_LABEL",
-           "SWEPT_SHARE"]
+           "closure_lengths", "ClosureLengths", "sample_pieces", "KIND_LABEL"]
 
 KIND_LABEL = {"W1": 1, "W2": 2, "W3": 3, "unknown": 4, "bridge": 4}
 """Surface label of the faces nearest to a piece of each kind."""
@@ -160,12 +156,11 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     margin : float, optional -- how far from a chord's ends a posture must cross it
         (default ``snap``).
     jitter : float -- how far two readings of one point may lie apart (a noisy sensor's,
-        :attr:`core2d.resolution.Resolution.jitter`); above 0, with ``free``, faces the
-        postures swept are left unfilled (step 4, :func:`swept_faces`).
+        :attr:`core2d.resolution.Resolution.jitter`); above 0, with ``swept``, step 4.
     swept : (s,) shapely geometries, optional -- the areas the probe's motions swept
         (:func:`recon3d.surface.sweep.swept_areas`); with ``jitter`` above 0, cut from the
-        region away from the sensed pieces (step 5); None: no step 5.
-    close : float -- step 5's closing radius: gaps narrower than ``2 close`` between the
+        region away from the sensed pieces (step 4); None: no step 4.
+    close : float -- step 4's closing radius: gaps narrower than ``2 close`` between the
         swept areas count as swept.
 
     Returns
@@ -186,8 +181,6 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     # fixed-precision noding (grid = snap / 8) is robust where floating noding fails
     noded = shapely.union_all(lines, grid_size=snap / 8)
     faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(noded)))
-    if jitter > 0 and free is not None and len(free) and len(faces):
-        faces = faces[~swept_faces(faces, free, snap, jitter)]
     geom = shapely.union_all(faces)
     if geom.geom_type not in ("Polygon", "MultiPolygon"):  # empty collection
         geom = shapely.Polygon()
@@ -195,55 +188,6 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
         sensed = [p.points for p in pieces if p.kind in ("W1", "W2", "W3")]
         geom = carve(geom, sensed, swept, snap, jitter, close)
     return SliceRegion(geom, tuple(pieces))
-
-
-SWEPT_SHARE = 0.5
-"""A face whose core the probe's postures sweep more than this share of is free space."""
-
-
-def swept_faces(faces, free, snap: float, jitter: float) -> np.ndarray:
-    """(f,) bool: which faces the probe swept (step 4 of a noisy sensor's closure).
-
-    A noisy sensor's pieces do not meet within ``snap``, so step 2 bridges many loose ends,
-    closest first, and some bridges (or unknown chords) close free space: a slot's mouth
-    bridged across, the slot filled (``deep_slot`` at sigma 0.3 eps, taxels 0.25 eps: three
-    of four slices). The probe's postures say where it was, and the rod does not penetrate
-    (§3.2): a face is free when the postures, widened by ``snap + jitter / 2``, cover more
-    than :data:`SWEPT_SHARE` of its core -- the face shrunk by ``snap + jitter``, as far as a
-    reading can lie from the surface the probe touched. On ``deep_slot``'s faces the share
-    is 1.0 for the bridged slots and at most 0.05 for material. A face of material merged
-    with a swept one through a gap in a wall is swept little and stays (the whole slice's
-    material is never dropped for a slot that is part of its face).
-
-    Parameters
-    ----------
-    faces : (f,) shapely Polygons.
-    free : (p, 2, 2) float -- probe postures, joint to tip (:func:`probe_postures`).
-    snap, jitter : float -- lengths.
-    """
-    free = np.asarray(free, dtype=np.float64).reshape(-1, 2, 2)
-    free = free[np.isfinite(free).all(axis=(1, 2))]
-    out = np.zeros(len(faces), dtype=bool)
-    if not len(free):
-        return out
-    cores = shapely.buffer(faces, -(snap + jitter))
-    live = np.flatnonzero(~shapely.is_empty(cores))
-    if not len(live):
-        return out
-    # only postures that come within the widening of a core can sweep any of it: the
-    # union of the rest (most of a slice's thousands, in the open free space or touching
-    # the material's faces) is never built
-    widen = snap + jitter / 2
-    lines = shapely.linestrings(free)
-    zone = shapely.buffer(shapely.union_all(cores[live]), widen)
-    shapely.prepare(zone)
-    near = shapely.intersects(zone, lines)
-    if not near.any():
-        return out
-    swept = shapely.union_all(shapely.buffer(lines[near], widen))
-    share = shapely.area(shapely.intersection(cores[live], swept)) / shapely.area(cores[live])
-    out[live] = share > SWEPT_SHARE
-    return out
 
 
 def _pierced(chords, free, margin: float) -> np.ndarray:
@@ -295,7 +239,7 @@ class ClosureLengths(NamedTuple):
     jitter: float
     """How far two readings of one point may lie apart (:class:`core2d.resolution.Resolution`)."""
     close: float
-    """Step 5's closing radius, half the W2 distance ``eps + jitter``: gaps between swept
+    """Step 4's closing radius, half the W2 distance ``eps + jitter``: gaps between swept
     areas narrower than the W2 distance are below the method's resolution (§4.3: two
     contacts closer than eps are joined by a segment, W2)."""
 
@@ -319,8 +263,8 @@ def result_region(result, snap: float, noise: float = 0.0, jitter: float = 0.0,
     """:func:`slice_region` of a :class:`core2d.SliceResult`: its pieces, less the unknown
     chords its motion log's reported postures went through (margin ``snap + 3 noise`` from
     the ends, ``noise`` the sensor's standard deviation, a length); when ``jitter`` (the
-    sensor's, a length) is above 0, less the faces they swept and what its motions swept
-    (closing radius ``close``)."""
+    sensor's, a length) is above 0, less what its motions swept (closing radius
+    ``close``)."""
     motions = getattr(result, "motions", None)
     swept = None
     if jitter > 0 and motions is not None and len(motions):

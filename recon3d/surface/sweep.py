@@ -19,7 +19,7 @@ been, not the simulator's truth. Arcs are sampled by chords (inside the arc), no
 ``sag`` from it.
 
 :func:`carve` is the closure's last step for a noisy sensor (:mod:`recon3d.surface.closure`,
-step 5): the closed region, less the swept area that lies away from every sensed piece.
+step 4): the closed region, less the swept area that lies away from every sensed piece.
 
 Examples
 --------

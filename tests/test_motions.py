@@ -118,24 +118,6 @@ def test_a_noisy_sensor_reports_postures_off_by_its_noise():
     assert np.abs(off[:, 2]).max() < 8 * 0.05 / L  # no turn lost or added
 
 
-@pytest.mark.parametrize("off, kept", [(5e-16, False), (-9e-16, False), (1e-7, True)])
-def test_a_reported_angle_off_by_rounding_is_the_posture_itself(off, kept):
-    """An engine's t can differ from (cos, sin) of theta in the last digits: such an angle
-    error is rounding and ``seen`` keeps the logged angle to the bit; a sensor's error (far
-    above) is kept."""
-    from types import SimpleNamespace
-
-    from core2d.sim.recorder import _seen
-
-    after = np.array([[1.0, 2.0, 2.5]])
-    t = 2.5 + off
-    reading = SimpleNamespace(joint=np.array([1.0, 2.0]), direction=np.array([np.cos(t),
-                                                                           np.sin(t)]))
-    got = _seen([reading], after)
-    assert (got[0, 2] != after[0, 2]) == kept
-    assert got[0, 2] == pytest.approx(t, abs=1e-15)
-
-
 def test_finger_probing_is_logged_too():
     contact, ws, eps = ExactContact(block(HILL)), WORKSPACE, 1.0
     res = sense_slice(contact, ws, eps, method="finger", directions=4, spacing=4.0)

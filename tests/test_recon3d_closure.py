@@ -119,4 +119,3 @@ def test_a_chord_no_posture_crosses_keeps_its_fill_and_a_touch_at_an_end_is_no_c
     reg = slice_region([outline], [], [], [chord], snap=1e-6, free=at_ends, margin=0.05)
     assert "unknown" in [p.kind for p in reg.pieces]
     assert reg.geometry.difference(truth).area > 5.0
-

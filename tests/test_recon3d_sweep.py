@@ -74,9 +74,8 @@ def fig18():
 
 
 def test_a_perfect_sensors_reported_postures_are_the_logged_ones(fig18):
-    """The compiled Embree engine's readings (its t differs from (cos, sin) of theta in the
-    last digit on these slices): ``seen`` is ``after`` to the bit, and the closure's postures
-    are the logged joints and tips."""
+    """The compiled Embree engine's readings: ``seen`` is ``after`` to the bit, and the
+    closure's postures are the logged joints and tips."""
     for s in fig18.slices:
         log = s.result.motions
         np.testing.assert_array_equal(log.seen, log.after)

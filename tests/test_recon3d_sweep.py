@@ -199,6 +199,24 @@ def test_carve_leaves_a_region_alone_when_nothing_swept_reaches_it():
     assert carve(box, [], np.zeros(0, dtype=object), SNAP, JITTER, 0.5).equals(box)
 
 
+@pytest.mark.parametrize("piece", [[[0.0, 0.0], [1.0, 0.0]],
+                                   [[0.0, 0.0], [1.0, 0.3], [1.2, 1.5]]])
+def test_the_zone_round_a_sensed_piece_is_never_carved(piece):
+    """Everything within snap + jitter of a sensed piece stays, at its ends and bends too (a
+    polyline's buffer cuts the circle's arcs short: by 7.6 % at its ends with 2 segments a
+    quarter, up to 15 % at a bend), and the carve stops at most 2 % beyond that."""
+    piece = np.array(piece)
+    box = shapely.box(-3, -3, 4, 4)
+    everywhere = np.array([shapely.box(-5, -5, 6, 6)])
+    got = carve(box, [piece], everywhere, SNAP, JITTER, 2.0)
+    cut = box.difference(got)
+    assert cut.area > 0.5 * box.area  # the carve acted
+    reach = shapely.distance(cut, shapely.LineString(piece))
+    assert (SNAP + JITTER) * (1 - 1e-9) <= reach
+    assert got.difference(shapely.buffer(shapely.LineString(piece), 1.02 * (SNAP + JITTER),
+                                          quad_segs=64)).area < 1e-9
+
+
 # a block 20 x 20 with a slot 4 wide from its top face down to y = 5; the walls were traced
 # only up to y = 14, and the top face's ends stop 0.3 short of the slot's corners, so the
 # loose ends are bridged across the walls' tops (4.0) and across the mouth (4.6) and the slot
@@ -220,7 +238,7 @@ def test_the_bridged_slot_is_carved_and_the_block_kept():
                        close=0.5).geometry
     assert blind.difference(SLOTTED).area == pytest.approx(4 * 15, rel=1e-6)  # slot filled
     assert SLOTTED.difference(got).area < 1e-9  # no material lost
-    gap = SNAP + JITTER
+    gap = 1.02 * (SNAP + JITTER)  # the zone kept round the walls and floor, at most
     middle = shapely.box(8 + gap, 5 + gap, 12 - gap, 20)
     assert got.intersection(middle).area < 1e-6
     assert got.difference(SLOTTED).area < 2 * gap * 15 + 4 * gap + 1e-6  # the walls' zones

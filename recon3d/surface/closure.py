@@ -49,7 +49,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from core2d.resolution import Resolution
-from recon3d.surface.sweep import carve, probe_length, swept_areas
+from recon3d.surface.sweep import carve, probe_length, swept_areas, unit
 
 __all__ = ["Piece", "SliceRegion", "slice_region", "result_region", "probe_postures",
            "closure_lengths", "ClosureLengths", "sample_pieces", "KIND_LABEL"]
@@ -218,9 +218,6 @@ def probe_postures(motions) -> np.ndarray:
     if motions is None or not len(motions):
         return np.zeros((0, 2, 2))
     seen, after = (np.asarray(x, dtype=np.float64) for x in (motions.seen, motions.after))
-
-    def unit(theta):
-        return np.stack([np.cos(theta), np.sin(theta)], axis=1)
 
     # the logged tip moved by the reading's errors: a perfect sensor's tips are the logged
     # ones to the bit (the joint plus L t would differ in the last digits)

@@ -6,7 +6,7 @@ import shapely
 
 from core2d.motionlog import KINDS, MotionLog
 from recon3d.surface.closure import closure_lengths, probe_postures, result_region, slice_region
-from recon3d.surface.sweep import carve, probe_length, swept_areas
+from recon3d.surface.sweep import _REACH, carve, probe_length, swept_areas
 
 L = 2.0
 K = {k: i for i, k in enumerate(KINDS)}
@@ -201,10 +201,9 @@ def test_carve_leaves_a_region_alone_when_nothing_swept_reaches_it():
 
 @pytest.mark.parametrize("piece", [[[0.0, 0.0], [1.0, 0.0]],
                                    [[0.0, 0.0], [1.0, 0.3], [1.2, 1.5]]])
-def test_the_zone_round_a_sensed_piece_is_never_carved(piece):
-    """Everything within snap + jitter of a sensed piece stays, at its ends and bends too (a
-    polyline's buffer cuts the circle's arcs short: by 7.6 % at its ends with 2 segments a
-    quarter, up to 15 % at a bend), and the carve stops at most 2 % beyond that."""
+def test_the_zone_round_a_sensed_piece_is_kept_and_no_more(piece):
+    """Nothing farther than snap + jitter from a sensed piece stays, and nothing nearer than
+    ``_REACH`` of it is carved (a buffer's round ends and bends are chords of the circle)."""
     piece = np.array(piece)
     box = shapely.box(-3, -3, 4, 4)
     everywhere = np.array([shapely.box(-5, -5, 6, 6)])
@@ -212,8 +211,8 @@ def test_the_zone_round_a_sensed_piece_is_never_carved(piece):
     cut = box.difference(got)
     assert cut.area > 0.5 * box.area  # the carve acted
     reach = shapely.distance(cut, shapely.LineString(piece))
-    assert (SNAP + JITTER) * (1 - 1e-9) <= reach
-    assert got.difference(shapely.buffer(shapely.LineString(piece), 1.02 * (SNAP + JITTER),
+    assert _REACH * (SNAP + JITTER) <= reach <= SNAP + JITTER
+    assert got.difference(shapely.buffer(shapely.LineString(piece), SNAP + JITTER,
                                           quad_segs=64)).area < 1e-9
 
 
@@ -238,7 +237,7 @@ def test_the_bridged_slot_is_carved_and_the_block_kept():
                        close=0.5).geometry
     assert blind.difference(SLOTTED).area == pytest.approx(4 * 15, rel=1e-6)  # slot filled
     assert SLOTTED.difference(got).area < 1e-9  # no material lost
-    gap = 1.02 * (SNAP + JITTER)  # the zone kept round the walls and floor, at most
+    gap = SNAP + JITTER
     middle = shapely.box(8 + gap, 5 + gap, 12 - gap, 20)
     assert got.intersection(middle).area < 1e-6
     assert got.difference(SLOTTED).area < 2 * gap * 15 + 4 * gap + 1e-6  # the walls' zones

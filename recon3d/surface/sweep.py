@@ -50,17 +50,13 @@ _FULL = 2.0 * np.pi - 1e-9
 _QUAD = 2
 """Segments per quarter circle of the carve's buffers (their round ends are snap to close
 across: a coarser arc moves them by a few percent of that)."""
-_ZONE_QUAD = 4
-"""Segments per quarter circle of the zone kept round the sensed pieces."""
-_OUTSIDE = 1.0 / np.cos(np.pi / (4 * _ZONE_QUAD))
-"""A point's buffer by r is a polygon whose sides are chords of the circle, r cos(pi /
-(4 ``_ZONE_QUAD``)) from the centre at their middles; by ``_OUTSIDE`` r its sides touch the
-circle of radius r. A polyline's buffer by r is exact along its segments, but its round
-ends and bends are chords too, and GEOS may span a bend by one chord 60 - 90 degrees wide
-(0.7 - 0.87 r from the vertex): the zone round the sensed pieces is their buffers and such
-discs about their points, so it reaches at least snap + jitter everywhere and at most 2 %
-farther, at the points (on ``comb`` at sigma 0.3 + T 0.25 the pieces' buffers alone fell
-2.4 % of the zone's area short of it)."""
+_REACH = np.cos(np.pi / 4)
+"""The zone kept round the sensed pieces is their buffers by snap + jitter: exact along their
+segments, but a buffer's round ends and bends are chords of the circle, cos(pi / 8) of the
+radius from the end at the chords' middles, and GEOS may span a bend by one chord up to 90
+degrees wide, cos(pi / 4) of it from the vertex. A zone that reaches snap + jitter everywhere
+(circumscribed discs about the points) was measured and not kept: F@1 % lower on five scenes
+at sigma 0.3 + T 0.25 (up to 0.005) and none higher, 4 x the cost (docs/notes/noise.md)."""
 
 
 def probe_length(motions) -> float:
@@ -141,18 +137,6 @@ def swept_areas(motions, length: float, sag: float) -> np.ndarray:
     return out
 
 
-def _zone(pieces: list, r: float):
-    """The points within ``r`` of the polylines ``pieces`` (each (k, 2) float), and at most
-    2 % farther at their points (``_OUTSIDE``): a shapely (Multi)Polygon."""
-    lines = shapely.linestrings(np.concatenate(pieces),
-                                indices=np.repeat(np.arange(len(pieces)), [len(p) for p in pieces]))
-    points = shapely.points(np.concatenate(pieces))
-    # the union of the pieces' own buffers: a tenth of the cost of buffering their union
-    return shapely.union_all(np.concatenate([
-        shapely.buffer(lines, r, quad_segs=_QUAD),
-        shapely.buffer(points, _OUTSIDE * r, quad_segs=_ZONE_QUAD)]))
-
-
 def carve(geometry, sensed, swept, snap: float, jitter: float, close: float):
     """The closed region ``geometry`` less what the probe swept away from the sensed pieces.
 
@@ -180,7 +164,11 @@ def carve(geometry, sensed, swept, snap: float, jitter: float, close: float):
         return geometry
     inner = geometry
     if len(sensed):
-        near_wall = _zone([np.asarray(p, dtype=np.float64) for p in sensed], snap + jitter)
+        lines = shapely.linestrings(np.concatenate(sensed),
+                                    indices=np.repeat(np.arange(len(sensed)),
+                                                      [len(p) for p in sensed]))
+        # the union of the pieces' own buffers: a tenth of the cost of buffering their union
+        near_wall = shapely.union_all(shapely.buffer(lines, snap + jitter, quad_segs=_QUAD))
         inner = geometry.difference(near_wall)
     if inner.is_empty:
         return geometry

@@ -100,6 +100,7 @@ from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.touched import Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
+from core2d.planner.thin_walls import behind_recorded
 from core2d.planner.tracing import reread_pass
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
@@ -246,10 +247,14 @@ def reversed_lid(run: Exploration, area) -> bool:
     the other areas hold; nothing lies behind the lid itself (G_i between the
     lid and the wall is narrower than eps/2, §3.1), so no pass can find
     anything and the area would only report an unknown chord over traced
-    contour. It is closed as traced."""
+    contour. It is closed as traced -- unless, with a noisy sensor, the lid's
+    middle lies on the chain's material side deeper than the jitter: the lid
+    then runs along the back of a wall thinner than the radius, contour of its
+    own (:mod:`core2d.planner.thin_walls`)."""
     chain = run.known.chain(area.b, area.a, run.res.tip_zone)
-    if chain is None or len(chain) < 2:
-        return False
+    if chain is None or len(chain) < 2 or behind_recorded(
+            run.known, run.res, (area.a + area.b) / 2, run.res.tip_zone):
+        return False  # (the lid along the back of a thin wall: core2d.planner.thin_walls)
     lid = shapely.linestrings(np.stack([area.a, area.b]))
     return bool(shapely.hausdorff_distance(lid, shapely.linestrings(chain)) <= run.res.tip_zone)
 

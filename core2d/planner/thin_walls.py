@@ -41,8 +41,10 @@ def behind_recorded(known: KnownContour, res: Resolution, point, radius: float) 
     >>> res = Resolution.of(1.0, noise=0.1)
     >>> k = KnownContour(join=0.5)
     >>> k.add([[x, 0.0] for x in np.arange(0.0, 6.1, 0.5)])  # material below y = 0
-    >>> behind_recorded(k, res, [3.0, -0.5], res.near), behind_recorded(k, res, [3.0, 0.3], res.near)
-    (True, False)
+    >>> behind_recorded(k, res, [3.0, -0.5], res.near)  # 0.5 deep: the wall's other face
+    True
+    >>> behind_recorded(k, res, [3.0, 0.3], res.near)  # the free side
+    False
     >>> behind_recorded(k, res, [3.0, -0.3], res.near)  # within the jitter: a reading of it
     False
     """

@@ -146,7 +146,8 @@ def carve(geometry, sensed, swept, snap: float, jitter: float, close: float):
     has none), closed by ``close`` (gaps between them narrower than ``2 close`` are below the
     method's resolution and taken as swept), are free: they are cut from the region, except
     within ``snap + jitter`` of a sensed piece, as far as a reading can lie from the surface
-    the probe touched. Swept areas that do not come within ``snap + close`` of what is cut
+    the probe touched (at a piece's ends and bends the zone reaches ``_REACH`` of that at
+    least: its buffer's arcs are chords). Swept areas that do not come within ``snap + close`` of what is cut
     are left out of the closing (a gap they would fill lies at its edge).
 
     Parameters

@@ -21,7 +21,9 @@ Two questions the map answers:
   lid past the map, no point of C_A^B can be touched: the robot has proven
   W3 from its own records** (the extension of Area(G_i) = 0, §4.2.1, to
   lids whose surroundings are known). When lines remain, each is a pass
-  the robot can try.
+  the robot can try. A W2 chord longer than eps (a noisy sensor's W2 band)
+  that the probe itself went through is an opening, not contour: it blocks
+  no free line (:meth:`KnownContour.soften`, :mod:`core2d.planner.openings`).
 """
 from __future__ import annotations
 
@@ -71,6 +73,7 @@ class KnownContour:
         self._hi = np.zeros((0, 2))
         self._end_dirs = []  # _end_direction of every piece (computed once)
         self._buf = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=np.int64))
+        self._soft = np.zeros(0, dtype=bool)  # segments that block no line (free_lines)
         self.memo: dict = {}  # name -> (len(pieces), answer): see :meth:`remembered`
 
     def add(self, polyline, pose_first=None, pose_last=None) -> None:
@@ -107,6 +110,7 @@ class KnownContour:
             if ok.any() and (ok := ok & _turns(self._end_dirs[j], steps)).any():
                 self._next[j].append((i, int(np.argmax(ok))))
         self._append(pl, i)
+        self._soft = np.concatenate([self._soft, np.zeros(len(pl) - 1, dtype=bool)])
         self._ends = np.concatenate([ends, pl[-1:]])
         self._starts = np.concatenate([self._starts, pl[:1]])
         self._end_dirs.append(end_dir)
@@ -137,6 +141,11 @@ class KnownContour:
         a[n:n + k], b[n:n + k], piece[n:n + k] = pl[:-1], pl[1:], i
         self._a, self._b, self._piece = a[:n + k], b[:n + k], piece[:n + k]
 
+    def soften(self, i: int) -> None:
+        """Let lines of :meth:`free_lines` pass through piece ``i``: a W2 chord the
+        probe went through (:mod:`core2d.planner.openings`); it stays on the map."""
+        self._soft[self._first[i]:self._first[i] + len(self.pieces[i]) - 1] = True
+
     def with_pieces(self, pieces) -> "KnownContour":
         """A copy of the map with ``pieces`` (each (k, 2) float) recorded too."""
         out = KnownContour(self.join)
@@ -148,6 +157,7 @@ class KnownContour:
         n = len(self._a)
         out._buf = tuple(x[:n].copy() for x in (self._a, self._b, self._piece))
         out._a, out._b, out._piece = out._buf
+        out._soft = self._soft.copy()
         for pl in pieces:
             out.add(pl)
         return out
@@ -317,14 +327,16 @@ class KnownContour:
         a, b = np.asarray(a, float), np.asarray(b, float)
         ab = b - a
         n = float(np.hypot(*ab))
+        seg_a, seg_b = (self._a, self._b) if not self._soft.any() else (
+            self._a[~self._soft], self._b[~self._soft])
         if n <= 2 * margin:
             none = np.zeros((0, 2))
-            return FreeLines(none, none, np.zeros(0), self._a, self._b, min_gap)
+            return FreeLines(none, none, np.zeros(0), seg_a, seg_b, min_gap)
         k = int(min(512, max(2, np.ceil((n - 2 * margin) / spacing) + 1)))
         s = np.linspace(margin, n - margin, k)
         pts = a + (s / n)[:, None] * ab
         tangent = np.broadcast_to(-ab / n, pts.shape)  # B -> A: V_i on its right
-        return FreeLines(pts, tangent, s / n, self._a, self._b, min_gap)
+        return FreeLines(pts, tangent, s / n, seg_a, seg_b, min_gap)
 
 
 def _end_direction(pl, span) -> np.ndarray:

@@ -95,6 +95,7 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import covered
+from core2d.planner.openings import soften_passed
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
@@ -151,6 +152,7 @@ def proof_lines(run: Exploration, area):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
     holds when there is none."""
+    soften_passed(run)  # W2 chords the probe went through: openings (core2d.planner.openings)
     return run.known.free_lines(area.a, area.b, spacing=run.eps / 2,
                                 margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
 

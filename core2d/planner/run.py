@@ -49,6 +49,7 @@ from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.mouths import close_unresolved, covered, is_mouth
+from core2d.planner.openings import SweptRobot
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
@@ -164,8 +165,10 @@ class Exploration:
     """
 
     def __init__(self, probe: Robot, eps: float, budget: Budget, flow: Flow = PULLING):
-        self.probe, self.eps, self.budget, self.flow = probe, eps, budget, flow
         self.res = probe.resolution
+        if resolves_half_eps(self.res):  # insertions' sweeps tell openings (planner.openings)
+            probe = SweptRobot(probe)
+        self.probe, self.eps, self.budget, self.flow = probe, eps, budget, flow
         self.same = self.res.tip_zone * flow.same  # contacts this close are one contact
         self.angle_tol = self.res.angle_tol(probe.length)
         self.counters = PlannerCounters()
@@ -175,6 +178,7 @@ class Exploration:
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.audits = 0
         self.mouths = []  # areas processed as mouths (core2d.planner.mouths)
+        self.band_w2 = []  # [map piece, sweeps seen]: W2 chords longer than eps (openings)
         # the robot's map; gaps narrower than eps (+ the sensor's jitter) are W2 (§3.1)
         self.known = KnownContour(join=self.res.w2_dist) if flow.map else None
 
@@ -201,6 +205,8 @@ class Exploration:
                         self.result.known_at[kind.lower()].append(self.probe.motions - 1)
             if outcome != "unknown" and self.known is not None and pieces is None:
                 self.known.add(lid, area.pose_a, area.pose_b)
+                if outcome == "W2" and area.dist > self.eps and isinstance(self.probe, SweptRobot):
+                    self.band_w2.append([len(self.known.pieces) - 1, 0])  # the noisy W2 band
 
     def defer(self, area, why):
         """A dead end: the area stays unknown and is looked at again later

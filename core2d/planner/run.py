@@ -166,8 +166,8 @@ class Exploration:
 
     def __init__(self, probe: Robot, eps: float, budget: Budget, flow: Flow = PULLING):
         self.res = probe.resolution
-        if resolves_half_eps(self.res):  # insertions' sweeps tell openings (planner.openings)
-            probe = SweptRobot(probe)
+        # a fine noisy sensor: its insertions' sweeps tell openings (core2d.planner.openings)
+        probe = SweptRobot(probe) if resolves_half_eps(self.res) else probe
         self.probe, self.eps, self.budget, self.flow = probe, eps, budget, flow
         self.same = self.res.tip_zone * flow.same  # contacts this close are one contact
         self.angle_tol = self.res.angle_tol(probe.length)

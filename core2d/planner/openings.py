@@ -65,7 +65,7 @@ MIN_SIN = np.sqrt(0.5)
 
 class SweptRobot:
     """The robot (:class:`~core2d.planner.robot.Robot`), logging what each insertion
-    swept: the segment from the joint reading before it to the tip after it.
+    swept: the segment from the joint pose before it to the tip after it.
 
     Every attribute and motion is the robot's own; ``sweeps()`` gives the log as
     ((n, 2) float starts, (n, 2) float ends).
@@ -80,6 +80,7 @@ class SweptRobot:
         return getattr(self._robot, name)
 
     def insert(self, max_dist=None):
+        """The robot's insertion (§3.2), its sweep logged."""
         start = np.array(self._robot.joint, dtype=float)
         reading = self._robot.insert(max_dist)
         self._starts.append(start)
@@ -87,6 +88,7 @@ class SweptRobot:
         return reading
 
     def sweeps(self) -> tuple[np.ndarray, np.ndarray]:
+        """((n, 2) float, (n, 2) float): where each insertion's sweep began and ended."""
         if not self._starts:
             return np.zeros((0, 2)), np.zeros((0, 2))
         return np.asarray(self._starts), np.asarray(self._ends)

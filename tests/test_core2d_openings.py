@@ -26,7 +26,7 @@ SHARED = Path(__file__).resolve().parents[2] / "shared"
     ([0.6, 5.0], [0.6, -0.8], False),  # its tip on a wall just behind the chord
 ])
 def test_a_sweep_crosses_a_chord_steeply_inside_and_goes_on(start, end, hit):
-    assert crossed((0.0, 0.0), (1.2, 0.0), [start], [end], margin=0.25, beyond=0.92) is hit
+    assert crossed((0.0, 0.0), (1.2, 0.0), [start], [end], margin=0.25, beyond=0.92)[0] == hit
 
 
 def _slot_map():

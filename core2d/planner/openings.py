@@ -67,17 +67,27 @@ class SweptRobot:
     """The robot (:class:`~core2d.planner.robot.Robot`), logging what each insertion
     swept: the segment from the joint pose before it to the tip after it.
 
-    Every attribute and motion is the robot's own; ``sweeps()`` gives the log as
-    ((n, 2) float starts, (n, 2) float ends).
+    Every attribute and motion is the robot's own (its motions bound once, its pose
+    read through); ``sweeps()`` gives the log as ((n, 2) float starts, (n, 2) float ends).
     """
 
     def __init__(self, robot):
         self._robot = robot
         self._starts: list = []
         self._ends: list = []
+        for name in ("approach", "swing", "turn_to", "pivot", "trace", "sense", "costs",
+                     "note_phase"):
+            if hasattr(robot, name):
+                setattr(self, name, getattr(robot, name))
 
-    def __getattr__(self, name):
+    def __getattr__(self, name):  # anything else the robot has
         return getattr(self._robot, name)
+
+    joint = property(lambda self: self._robot.joint)
+    theta = property(lambda self: self._robot.theta)
+    tip = property(lambda self: self._robot.tip)
+    direction = property(lambda self: self._robot.direction)
+    motions = property(lambda self: self._robot.motions)
 
     def insert(self, max_dist=None):
         """The robot's insertion (§3.2), its sweep logged."""
@@ -87,40 +97,45 @@ class SweptRobot:
         self._ends.append(np.array(self._robot.tip, dtype=float))
         return reading
 
-    def sweeps(self) -> tuple[np.ndarray, np.ndarray]:
-        """((n, 2) float, (n, 2) float): where each insertion's sweep began and ended."""
-        if not self._starts:
+    def sweeps(self, first: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """((n, 2) float, (n, 2) float): where each insertion's sweep began and ended,
+        from the ``first`` on."""
+        if len(self._starts) <= first:
             return np.zeros((0, 2)), np.zeros((0, 2))
-        return np.asarray(self._starts), np.asarray(self._ends)
+        return np.asarray(self._starts[first:]), np.asarray(self._ends[first:])
+
+    def __len__(self) -> int:
+        return len(self._starts)
 
 
-def crossed(a, b, starts, ends, margin: float, beyond: float) -> bool:
-    """Does any segment ``starts[i]`` -> ``ends[i]`` ((n, 2) float each) cross the chord
-    ``a`` -> ``b`` at more than 45°, farther than ``margin`` from both ends, and go on
-    farther than ``beyond`` past it?
+def crossed(a, b, starts, ends, margin: float, beyond: float) -> np.ndarray:
+    """(m,) bool: does any segment ``starts[j]`` -> ``ends[j]`` ((n, 2) float each)
+    cross the chord ``a[i]`` -> ``b[i]`` ((m, 2) or (2,) float) at more than 45°,
+    farther than ``margin`` from both its ends, and go on farther than ``beyond`` past it?
 
     >>> crossed((0, 0), (1.2, 0), [[0.6, 5.0]], [[0.6, -3.0]], 0.25, 1.0)  # straight in
-    True
+    array([ True])
     >>> crossed((0, 0), (1.2, 0), [[0.1, 5.0]], [[0.1, -3.0]], 0.25, 1.0)  # by an end
-    False
+    array([False])
     >>> crossed((0, 0), (1.2, 0), [[-4.0, 0.1]], [[5.0, -0.1]], 0.25, 1.0)  # along it
-    False
+    array([False])
     >>> crossed((0, 0), (1.2, 0), [[0.6, 5.0]], [[0.6, -0.4]], 0.25, 1.0)  # a tip just behind
-    False
+    array([False])
     """
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    p, q = np.asarray(starts, float).reshape(-1, 2), np.asarray(ends, float).reshape(-1, 2)
-    ab, pq = b - a, q - p
-    den = ab[0] * pq[:, 1] - ab[1] * pq[:, 0]
-    lengths = np.hypot(*ab) * np.hypot(pq[:, 0], pq[:, 1])
-    steep = np.abs(den) >= MIN_SIN * lengths
-    ap = p - a
+    a, b = np.asarray(a, float).reshape(-1, 1, 2), np.asarray(b, float).reshape(-1, 1, 2)
+    p = np.asarray(starts, float).reshape(1, -1, 2)
+    q = np.asarray(ends, float).reshape(1, -1, 2)
+    ab, pq, ap = b - a, q - p, p - a  # (m, 1, 2), (1, n, 2), (m, n, 2)
+    den = ab[..., 0] * pq[..., 1] - ab[..., 1] * pq[..., 0]  # (m, n)
+    chord = np.hypot(ab[..., 0], ab[..., 1])  # (m, 1)
+    sweep = np.hypot(pq[..., 0], pq[..., 1])  # (1, n)
+    steep = np.abs(den) >= MIN_SIN * chord * sweep
     with np.errstate(divide="ignore", invalid="ignore"):
-        s = (ap[:, 0] * pq[:, 1] - ap[:, 1] * pq[:, 0]) / den  # along the chord
-        t = (ap[:, 0] * ab[1] - ap[:, 1] * ab[0]) / den  # along the sweep
-    inner = margin / max(float(np.hypot(*ab)), 1e-300)
-    past = (1.0 - t) * np.hypot(pq[:, 0], pq[:, 1])  # how far the sweep goes on beyond it
-    return bool((steep & (s > inner) & (s < 1.0 - inner) & (t >= 0.0) & (past > beyond)).any())
+        s = (ap[..., 0] * pq[..., 1] - ap[..., 1] * pq[..., 0]) / den  # along the chord
+        t = (ap[..., 0] * ab[..., 1] - ap[..., 1] * ab[..., 0]) / den  # along the sweep
+    inner = margin / np.maximum(chord, 1e-300)
+    past = (1.0 - t) * sweep  # how far the sweep goes on beyond the chord
+    return (steep & (s > inner) & (s < 1.0 - inner) & (t >= 0.0) & (past > beyond)).any(axis=1)
 
 
 def soften_passed(run: Exploration) -> int:
@@ -131,14 +146,20 @@ def soften_passed(run: Exploration) -> int:
     yet: each sweep is checked against each chord once."""
     if not isinstance(run.probe, SweptRobot) or not run.band_w2:
         return 0
-    starts, ends = run.probe.sweeps()
-    done, left = 0, []
-    for piece, seen in run.band_w2:
-        a, b = run.known.pieces[piece][0], run.known.pieces[piece][-1]
-        if crossed(a, b, starts[seen:], ends[seen:], run.eps / 4.0, run.res.tip_zone):
-            run.known.soften(piece)
-            done += 1
-        else:
-            left.append([piece, len(starts)])
-    run.band_w2 = left
+    total, done, left = len(run.probe), 0, []
+    for seen in sorted({seen for _, seen in run.band_w2}):
+        pieces = [piece for piece, k in run.band_w2 if k == seen]
+        if seen == total:
+            left += [[piece, total] for piece in pieces]
+            continue
+        a = np.array([run.known.pieces[i][0] for i in pieces])
+        b = np.array([run.known.pieces[i][-1] for i in pieces])
+        hit = crossed(a, b, *run.probe.sweeps(seen), run.eps / 4.0, run.res.tip_zone)
+        for piece, h in zip(pieces, hit):
+            if h:
+                run.known.soften(piece)
+                done += 1
+            else:
+                left.append([piece, total])
+    run.band_w2 = sorted(left)
     return done

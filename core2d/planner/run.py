@@ -205,7 +205,7 @@ class Exploration:
                         self.result.known_at[kind.lower()].append(self.probe.motions - 1)
             if outcome != "unknown" and self.known is not None and pieces is None:
                 self.known.add(lid, area.pose_a, area.pose_b)
-                if outcome == "W2" and area.dist > self.eps and isinstance(self.probe, SweptRobot):
+                if isinstance(self.probe, SweptRobot) and outcome == "W2" and area.dist > self.eps:
                     self.band_w2.append([len(self.known.pieces) - 1, 0])  # the noisy W2 band
 
     def defer(self, area, why):

@@ -44,6 +44,7 @@ from core2d.planner.denoise import smooth
 from core2d.planner.areas import Area, pivot_G, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
+from core2d.planner.budget import Budget
 from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
@@ -63,20 +64,6 @@ __all__ = ["explore", "Exploration", "Budget", "back_at"]
 
 #: generations in a row without new traced contour before §4.4 escape
 STALE = 3
-
-
-class Budget:
-    """Motion / area budget: a run always ends."""
-
-    def __init__(self, probe: Robot, max_motions: int = 20000, max_areas: int = 4000):
-        self.probe, self.max_motions, self.max_areas = probe, max_motions, max_areas
-        self.areas = 0
-        self.hit = False
-
-    def __call__(self) -> bool:
-        ok = self.probe.motions < self.max_motions and self.areas < self.max_areas
-        self.hit |= not ok
-        return ok
 
 
 def _same(p, q, tol):

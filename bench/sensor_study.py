@@ -33,6 +33,7 @@ absent). Nothing is asserted: it measures.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -71,6 +72,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]
         rows.append({"noise": noise, "taxel": taxel, "sensor_seed": seed + 1000 * j,
                      "repeat": j, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
+            "w2_credit_length_sensor",
             "coverage_resolvable_sensor", "covered_resolvable_length_sensor",
             "resolvable_length",
             "reachable_length", "precision", "precise_length", "precision_sensor",
@@ -184,13 +186,14 @@ def summarise(rows) -> list[dict]:
     for (g, noise, taxel), rs in sorted(keyed.items()):
         def total(num, den):
             d = sum(r[den] for r in rs)
-            return sum(r[num] for r in rs) / d if d > 0 else 1.0
+            return sum(r.get(num, math.nan) for r in rs) / d if d > 0 else 1.0
         base = sum(r["motions"] / r["ratio"] for r in rs)
         out.append({
             "group": g, "noise": noise, "taxel": taxel, "slices": len(rs),
             "coverage": total("covered_length", "reachable_length"),
             "coverage_sensor": total("covered_length_sensor", "reachable_length"),
             "cov_sensor_min": min(r["coverage_sensor"] for r in rs),
+            "w2_credit_sensor": total("w2_credit_length_sensor", "reachable_length"),
             "resolved_sensor": total("covered_resolvable_length_sensor", "resolvable_length"),
             "resolved_sensor_min": min(r["coverage_resolvable_sensor"] for r in rs),
             "precision": total("precise_length", "detected_length"),
@@ -210,18 +213,27 @@ def summarise(rows) -> list[dict]:
 def markdown(summary) -> str:
     """The summary as a markdown table."""
     rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
-            "(min) | over the part eps resolves (min) | precision eps/2 | precision eps/2+2σ "
-            "(min) | W3 lids | unsound eps/2 | unsound eps/2+2σ | motions "
-            "| × noiseless (max) | budget hits |", "|" + "---|" * 15]
+            "(min) | of it behind W2 chords | over the part eps resolves (min) | precision eps/2 "
+            "| precision eps/2+2σ (min) | W3 lids | unsound eps/2 | unsound eps/2+2σ | motions "
+            "| × noiseless (max) | budget hits |", "|" + "---|" * 16]
     for s in summary:
         rows.append(
             f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
             f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
+            f"{_credit(s)} | "
             f"{s['resolved_sensor']:.4f} ({s['resolved_sensor_min']:.4f}) | "
             f"{s['precision']:.4f} | {s['precision_sensor']:.4f} ({s['prec_sensor_min']:.4f}) | "
             f"{s['lids']} | {s['unsound']} | {s['unsound_sensor']} | {s['motions']} | {s['ratio']:.2f} "
             f"({s['ratio_max']:.2f}) | {s['budget']} |")
     return "\n".join(rows)
+
+
+def _credit(s: dict) -> str:
+    """The share of the reachable contour counted covered only because it lies behind a
+    W2 chord (never within eps/2 + 2 sigma of W1 or W2: the walls of a slot the chord
+    closed); '-' for rows of a CSV written before the column existed."""
+    v = s.get("w2_credit_sensor")
+    return "-" if v is None or v != v else f"{v:.4f}"
 
 
 def per_case(rows) -> list[dict]:
@@ -238,10 +250,11 @@ def per_case(rows) -> list[dict]:
     for (g, name, noise, taxel), rs in keyed.items():
         def total(num, den):
             d = sum(r[den] for r in rs)
-            return sum(r[num] for r in rs) / d if d > 0 else 1.0
+            return sum(r.get(num, math.nan) for r in rs) / d if d > 0 else 1.0
         base = sum(r["motions"] / r["ratio"] for r in rs)
         out.append({"group": g, "case": name, "noise": noise, "taxel": taxel,
                     "coverage_sensor": total("covered_length_sensor", "reachable_length"),
+                    "w2_credit_sensor": total("w2_credit_length_sensor", "reachable_length"),
                     "resolved_sensor": total("covered_resolvable_length_sensor",
                                              "resolvable_length"),
                     "precision_sensor": total("precise_length_sensor", "detected_length"),
@@ -272,7 +285,8 @@ def verdicts(rows) -> str:
         for c in sorted(cs, key=lambda c: (c["group"], c["case"])):
             missed = [k for k, f in checks.items() if not f(c)]
             if missed:
-                lines.append(f"  {c['group']} {c['case']}: coverage {c['coverage_sensor']:.4f}, "
+                lines.append(f"  {c['group']} {c['case']}: coverage {c['coverage_sensor']:.4f} "
+                             f"(behind W2 chords {_credit(c)}), "
                              f"over the part eps resolves {c['resolved_sensor']:.4f}, precision "
                              f"{c['precision_sensor']:.4f}, motions x{c['ratio']:.2f}, budget "
                              f"hits {c['budget']} (misses: {', '.join(missed)})")

@@ -91,6 +91,13 @@ def test_contour_behind_a_w2_chord_is_approximated():
     rev = metrics(loops, eps=1.0, w1=[outside], w2=[chord[::-1]])
     assert rev["w2_long_arcs"] == 1 and rev["w2_arc_length"] == 0.0
     assert rev["coverage"] < 0.92
+    # credited through the arc only: the slot's walls and bottom farther than tol
+    # (eps / 2) from the chord and from W1, i.e. all but the top tol of each wall; the
+    # rest is what W1 alone covers
+    assert m["w2_credit_length"] == pytest.approx(40 + width - 2 * 0.5, abs=2 * m["spacing"])
+    assert m["covered_length"] - m["w2_credit_length"] == pytest.approx(
+        bare["covered_length"], abs=2 * m["spacing"])
+    assert bare["w2_credit_length"] == 0.0 and rev["w2_credit_length"] == 0.0
 
 
 def test_coincident_ends_make_no_arc():

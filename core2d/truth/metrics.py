@@ -15,7 +15,11 @@ Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
   a reversed chord and credits nothing: ``w2_long_arcs`` counts them).
   ``eps / 2`` is the natural tolerance: every
   point of a W2 chord with ``Dist(A, B) < eps`` lies within ``eps / 2`` of
-  ``A`` or ``B``;
+  ``A`` or ``B``. ``w2_credit_length`` is the part of the covered length that
+  counts only through such an arc (farther than ``tol`` from W1 u W2): the walls
+  of a slot closed by its W2 chord, never touched. A noisy sensor's W2 chords
+  reach eps + jitter (:attr:`~core2d.resolution.Resolution.w2_dist`), so they
+  can close slots wider than eps that a perfect sensor would have entered;
 * **coverage_resolvable** -- the same over the reachable contour that the
   paper's resolution resolves (:mod:`core2d.truth.resolvable`: not inside an
   opening narrower than eps, which §3.1 closes by a W2 chord and never enters);
@@ -63,7 +67,7 @@ _MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected
              "spacing", "sensor_tol")
 #: the keys of :func:`slice_metrics` that :func:`sensor_metrics` reports at the sensor's tolerance
 _SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision", "w3_unsound_count",
-                "covered_resolvable_length", "coverage_resolvable")
+                "covered_resolvable_length", "coverage_resolvable", "w2_credit_length")
 
 
 def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
@@ -249,6 +253,7 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
         "hausdorff_true_reachable_to_detected": (float(d_true[reach].max())
                                                  if len(da) and reach.any() else None),
         "w2_arc_length": float(w[behind_w2].sum()),
+        "w2_credit_length": float(w[covered & (d_true > tol)].sum()),
         "w2_long_arcs": int(w2_long.sum()),
         "w3_count": len(result.w3),
         "w3_lidded_length": lidded,
@@ -284,7 +289,8 @@ def sensor_metrics(loops, result: SliceResult, eps: float, noise: float,
     (:attr:`Resolution.sensor_tol <core2d.resolution.Resolution.sensor_tol>`)
     is as good as the sensor can tell. Returns ``sensor_tol`` and the keys
     ``covered_length``, ``coverage``, ``precise_length``, ``precision``,
-    ``w3_unsound_count`` of :func:`slice_metrics` at that tolerance (a lid is
+    ``w3_unsound_count``, ``covered_resolvable_length``, ``coverage_resolvable``,
+    ``w2_credit_length`` of :func:`slice_metrics` at that tolerance (a lid is
     unsound when it hides reachable contour farther than eps from its ends
     and farther than the tolerance from the lid), each with the suffix
     ``_sensor`` (reported beside the noiseless ones), and ``w3_soundness_sensor``. ``spacing``,

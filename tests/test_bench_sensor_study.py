@@ -1,0 +1,37 @@
+"""``bench/sensor_study.py``'s tables from rows (no sensing): the share of the reachable
+contour counted covered only behind W2 chords is printed beside the coverage."""
+from __future__ import annotations
+
+import math
+
+from bench.sensor_study import markdown, per_case, summarise, verdicts
+
+
+def _row(name, cov, credit, noise=0.3, taxel=0.25, repeat=0):
+    row = {"group": "outlines", "name": name, "noise": noise, "taxel": taxel, "repeat": repeat,
+           "reachable_length": 100.0, "covered_length": 100.0 * cov, "coverage_sensor": cov,
+           "covered_length_sensor": 100.0 * cov, "resolvable_length": 100.0,
+           "covered_resolvable_length_sensor": 100.0 * cov, "coverage_resolvable_sensor": cov,
+           "precise_length": 50.0, "precise_length_sensor": 50.0, "detected_length": 50.0,
+           "precision_sensor": 1.0, "w3_count": 0, "w3_unsound_count": 0,
+           "w3_unsound_count_sensor": 0, "motions": 100, "ratio": 1.0, "budget_hit": False}
+    if credit is not None:
+        row["w2_credit_length_sensor"] = 100.0 * credit
+    return row
+
+
+def test_the_w2_credit_is_pooled_and_printed():
+    rows = [_row("comb-0", 0.90, 0.30), _row("star-0", 0.99, 0.02)]
+    (s,) = summarise(rows)
+    assert math.isclose(s["w2_credit_sensor"], 0.16)
+    table = markdown([s])
+    assert "of it behind W2 chords" in table.splitlines()[0]
+    assert "| 0.9450 (0.9000) | 0.1600 |" in table
+    cases = {c["case"]: c for c in per_case(rows)}
+    assert math.isclose(cases["comb-0"]["w2_credit_sensor"], 0.30)
+    assert "comb-0: coverage 0.9000 (behind W2 chords 0.3000)" in verdicts(rows)
+
+
+def test_rows_without_the_column_print_a_dash():
+    (s,) = summarise([_row("comb-0", 0.90, None)])
+    assert "| 0.9000 (0.9000) | - |" in markdown([s])

@@ -1,7 +1,7 @@
 """The revisit of dead ends with a noisy sensor (sigma = 0.3 eps, taxels
 0.25 eps, seeded; exact backend, eps 1): the rule of
 :mod:`core2d.planner.revisit` that only a noisy sensor switches on,
-:func:`~core2d.planner.pass_contacts.in_reach` -- a pass's contact met in front
+:func:`~core2d.planner.revisit.in_reach` -- a pass's contact met in front
 of the lid, farther from it than half its length, does not split the area
 (it would lay lids across material).
 """

@@ -34,7 +34,6 @@ MODULES = [
     "core2d.planner.thin_walls",
     "core2d.planner.openings",
     "core2d.planner.budget",
-    "core2d.planner.pass_contacts",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
     "core2d.truth.resolvable",

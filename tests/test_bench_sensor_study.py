@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import pytest
+
 from bench.sensor_study import markdown, per_case, summarise, verdicts
 
 
@@ -35,3 +37,19 @@ def test_the_w2_credit_is_pooled_and_printed():
 def test_rows_without_the_column_print_a_dash():
     (s,) = summarise([_row("comb-0", 0.90, None)])
     assert "| 0.9000 (0.9000) | - |" in markdown([s])
+
+
+def test_the_chart_draws_with_and_without_the_column(tmp_path):
+    """The chart adds the coverage without the W2 credit when the rows have it, and still
+    draws rows of an older CSV."""
+    from bench.sensor_study import coverage_target
+    from bench.sensor_study_chart import chart, without_credit
+
+    for credit, name in ((0.30, "with.png"), (None, "without.png")):
+        rows = [_row("comb-0", 0.90, credit, noise=0.0, taxel=0.0),
+                _row("comb-0", 0.90, credit)]
+        summary = summarise(rows)
+        bare = without_credit(summary)
+        assert bare == ([] if credit is None else [pytest.approx(0.60)] * 2)
+        chart(summary, tmp_path / name, coverage_target)
+        assert (tmp_path / name).stat().st_size > 0

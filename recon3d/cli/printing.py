@@ -97,6 +97,11 @@ def _speed(config) -> str:
 def coverage_lines(t: dict) -> list[str]:
     """The summary's 2D lines from the ``total`` of ``metrics.json``.
 
+    The coverage counts the contour behind a W2 chord (§3.1); where that share
+    (``w2_credit_length`` over the reachable length) is 0.001 or more, it is named, and
+    so is the coverage over the part eps resolves where openings narrower than eps hold
+    0.1 % of the reachable contour or more.
+
     With a sensor model (``coverage_sensor`` present) the figures first are those within
     the tolerance the sensor allows, eps / 2 + 2 sigma, and a second line gives them within
     eps / 2: a reading 2 sigma off the contour is as good as the sensor can tell, and read
@@ -105,6 +110,9 @@ def coverage_lines(t: dict) -> list[str]:
     >>> t = {"coverage": 0.95, "precision": 0.94, "w3_soundness": 1.0, "w3_count": 0}
     >>> print(*coverage_lines(t), sep="\\n")
       2D  reachable coverage 0.9500  precision 0.9400  W3 soundness 1.0000 (0 lids)
+    >>> print(*coverage_lines(dict(t, reachable_length=100.0, resolvable_length=100.0,
+    ...                               w2_credit_length=2.5)))
+      2D  reachable coverage 0.9500 (0.0250 of it behind W2 chords, never touched)  precision 0.9400  W3 soundness 1.0000 (0 lids)
     >>> t.update(coverage_sensor=0.976, precision_sensor=0.998, w3_soundness_sensor=1.0,
     ...          sensor_tol=0.495)
     >>> print(*coverage_lines(t), sep="\\n")
@@ -115,10 +123,15 @@ def coverage_lines(t: dict) -> list[str]:
     noisy = t.get("coverage_sensor") is not None
 
     def figures(suffix):
-        narrow = (f" ({number(t.get('coverage_resolvable' + suffix), '.4f')} of the part eps "
-                  f"resolves: {percent(1.0 - resolved / reach, 1)} of the reachable contour "
-                  f"lies in openings narrower than eps, §3.1)"
-                  ) if reach > 0 and resolved < reach * (1 - 1e-3) else ""
+        notes = []
+        credit = (t.get("w2_credit_length" + suffix) or 0.0) / reach if reach > 0 else 0.0
+        if credit >= 1e-3:  # never touched: the walls of slots W2 chords closed
+            notes.append(f"{number(credit, '.4f')} of it behind W2 chords, never touched")
+        if reach > 0 and resolved < reach * (1 - 1e-3):
+            notes.append(f"{number(t.get('coverage_resolvable' + suffix), '.4f')} of the part "
+                         f"eps resolves: {percent(1.0 - resolved / reach, 1)} of the reachable "
+                         f"contour lies in openings narrower than eps, §3.1")
+        narrow = f" ({'; '.join(notes)})" if notes else ""
         return (f"reachable coverage {number(t.get('coverage' + suffix), '.4f')}{narrow}  "
                 f"precision {number(t.get('precision' + suffix), '.4f')}  W3 soundness "
                 f"{number(t.get('w3_soundness' + suffix), '.4f')}")

@@ -147,7 +147,12 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
                                f"precision {total['precision_sensor']:.4f}")
     assert noisy[0].endswith(f"within the sensor's tolerance eps/2 + 2 sigma = "
                              f"{total['sensor_tol']:.3g}")
+    # within eps/2 the noisy pieces lie off the contour, and the arcs behind W2 chords are
+    # much of the coverage: the line says how much (none within the sensor's tolerance)
+    credit = total["w2_credit_length"] / total["reachable_length"]
+    assert credit >= 1e-3 and total["w2_credit_length_sensor"] == 0.0
     assert noisy[1].startswith(f"      within eps/2: reachable coverage {total['coverage']:.4f}"
+                               f" ({credit:.4f} of it behind W2 chords, never touched)"
                                f"  precision {total['precision']:.4f}")
     assert not any("sensor" in ln for ln in summary_lines(plain))
     # batch.csv's row names the sensor and its coverage; none for perfect sensing

@@ -314,13 +314,10 @@ class KnownContour:
         inner = pl[int(np.floor(s0)) + 1:int(np.ceil(s1))]
         return np.vstack([at(s0), inner, at(s1)])
 
-    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float,
-                   extra=None) -> FreeLines:
+    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> FreeLines:
         """Lines from F crossing the open lid A->B from its V side (Def. 3)
         past the recorded contour, one per lid sample with a free gap wider
         than ``min_gap``; empty when none is left (the W3 proof above).
-        ``extra`` ((m, 2, 2) float, optional): segments that block lines too
-        (other areas' lids, :mod:`core2d.planner.open_lids`).
 
         The lid is sampled every ``spacing`` (at most 512 samples), leaving
         ``margin`` at each touched end. The samples are solved as asked
@@ -332,9 +329,6 @@ class KnownContour:
         n = float(np.hypot(*ab))
         seg_a, seg_b = (self._a, self._b) if not self._soft.any() else (
             self._a[~self._soft], self._b[~self._soft])
-        if extra is not None and len(extra):
-            extra = np.asarray(extra, dtype=np.float64).reshape(-1, 2, 2)
-            seg_a, seg_b = np.concatenate([seg_a, extra[:, 0]]), np.concatenate([seg_b, extra[:, 1]])
         if n <= 2 * margin:
             none = np.zeros((0, 2))
             return FreeLines(none, none, np.zeros(0), seg_a, seg_b, min_gap)

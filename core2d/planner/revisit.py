@@ -95,7 +95,6 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import covered
-from core2d.planner.open_lids import open_lids, steer
 from core2d.planner.openings import soften_passed
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
@@ -149,28 +148,13 @@ def lid_like(run: Exploration, area) -> bool:
     return not run.known.crosses(area.a, area.b, run.res.tip_zone)
 
 
-def proof_lines(run: Exploration, area, extra=None):
-    """Free lines from F through the lid past the recorded contour (and past the
-    segments ``extra``, (m, 2, 2) float, when given), at lid samples farther than
-    eps/2 from the touched ends: the W3 proof of step 2 holds when there is none
-    past the record."""
+def proof_lines(run: Exploration, area):
+    """Free lines from F through the lid past the recorded contour, at lid
+    samples farther than eps/2 from the touched ends: the W3 proof of step 2
+    holds when there is none."""
     soften_passed(run)  # W2 chords the probe went through: openings (core2d.planner.openings)
     return run.known.free_lines(area.a, area.b, spacing=run.eps / 2,
-                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol,
-                                extra=extra)
-
-
-def _steered(run: Exploration, area, plan, lines):
-    """With a noisy sensor, ``plan``'s passes through other open areas' lids made
-    along lines past those lids (:mod:`core2d.planner.open_lids`); and whether
-    any was."""
-    if run.res.jitter == 0 or not lines:
-        return plan, False
-    lids = open_lids(run, area)
-    if not len(lids):
-        return plan, False
-    return steer(plan, lids, proof_lines(run, area, extra=lids), area.a, area.b,
-                 2.5 * run.probe.radius, run.res.tip_zone)
+                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
 
 
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
@@ -302,8 +286,7 @@ def revisit_one(run: Exploration, area):
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
                                     margin=run.res.tip_zone, min_gap=run.angle_tol)
         plan = passes(back, area.b, area.a) if back else []
-    plan, steered = _steered(run, area, plan, lines)
-    ends_only, escaped = not steered, False
+    ends_only, escaped = True, False
     blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
     plan, k = [(p, d, None) for p, d in plan], 0
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))

@@ -53,3 +53,16 @@ def test_the_chart_draws_with_and_without_the_column(tmp_path):
         assert bare == ([] if credit is None else [pytest.approx(0.60)] * 2)
         chart(summary, tmp_path / name, coverage_target)
         assert (tmp_path / name).stat().st_size > 0
+
+
+@pytest.mark.parametrize("first, names", [(0, ["star-0", "star-1"]), (2, ["star-2", "star-3"])])
+def test_first_outline_picks_the_outline_seeds(first, names):
+    """``--first-outline`` starts each kind's seeds there: outlines the rules never saw."""
+    from types import SimpleNamespace
+
+    from bench.sensor_study import cases
+
+    args = SimpleNamespace(groups=["outlines"], first_outline=first, per_kind=2, slices=1)
+    got = [name for _, name, _, a in cases(args) if a[0] == "star"]
+    assert got == names
+    assert [a[1] for _, name, _, a in cases(args) if name in names] == [first, first + 1]

@@ -88,6 +88,59 @@ def test_mesh_distances_hierarchy_prunes_nothing_it_needs():
     np.testing.assert_allclose(ours, vtk_distances(far, mesh), rtol=1e-9)
 
 
+def _node_triangles(child, first, count, order, node):
+    """Indices of the triangles under ``node`` of a hierarchy of ``closest._build``."""
+    if count[node] > 0:
+        return order[first[node]:first[node] + count[node]]
+    c = child[node]
+    return np.concatenate([_node_triangles(child, first, count, order, c),
+                           _node_triangles(child, first, count, order, c + 1)])
+
+
+@pytest.mark.parametrize("mesh", [trimesh.creation.box().subdivide().subdivide(),  # ties
+                                  trimesh.creation.icosphere(subdivisions=3)])
+def test_hierarchy_boxes_bound_their_triangles_and_split_at_the_median(mesh):
+    """Each box is the least box of the triangles under it (made bottom up), every triangle
+    is in one leaf, and each split puts the smaller half of the centroids (along the axis
+    they spread most) on the first child: the partition that replaced a sort per node."""
+    from recon3d.score import closest
+
+    tri = np.ascontiguousarray(mesh.vertices[mesh.faces], dtype=np.float64)
+    lo, hi, child, first, count, order = closest._build(tri)
+    assert np.array_equal(np.sort(order), np.arange(len(tri)))
+    leaves = np.flatnonzero(count > 0)
+    assert count[leaves].sum() == len(tri) and count.max() <= closest.LEAF
+    cen = tri.mean(axis=1)
+    for node in range(len(lo)):
+        under = tri[_node_triangles(child, first, count, order, node)]
+        assert np.array_equal(lo[node], under.min(axis=(0, 1)))
+        assert np.array_equal(hi[node], under.max(axis=(0, 1)))
+        if count[node] == 0:
+            c = child[node]
+            left = cen[_node_triangles(child, first, count, order, c)]
+            right = cen[_node_triangles(child, first, count, order, c + 1)]
+            axis = int(np.argmax(np.ptp(np.vstack([left, right]), axis=0)))
+            assert len(right) - len(left) in (0, 1)
+            assert left[:, axis].max() <= right[:, axis].min()
+
+
+def test_mesh_distances_equal_the_least_triangle_distance():
+    """Against every triangle one by one (the least of the triangle distances, bit for bit)
+    and against VTK (an independent computation): the hierarchy skips no triangle a point
+    needs, on a mesh whose centroids tie along every axis."""
+    from recon3d.score import closest
+
+    mesh = trimesh.creation.box().subdivide().subdivide()
+    rng = np.random.default_rng(3)
+    pts = np.vstack([rng.normal(size=(300, 3)),
+                     mesh.vertices + rng.normal(0, 1e-3, (len(mesh.vertices), 3))])
+    ours = mesh_distances(pts, mesh.vertices, mesh.faces)
+    tri = mesh.vertices[mesh.faces]
+    each = np.sqrt([min(closest._tri_dist2(p, *t) for t in tri) for p in pts])
+    assert np.array_equal(ours, each)
+    np.testing.assert_allclose(ours, vtk_distances(pts, mesh), rtol=1e-9, atol=1e-12)
+
+
 def test_mesh_distances_refuses_an_empty_mesh():
     with pytest.raises(ValueError, match="no faces"):
         mesh_distances(np.zeros((1, 3)), np.zeros((0, 3)), np.zeros((0, 3), int))

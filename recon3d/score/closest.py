@@ -75,7 +75,13 @@ def _build(tri):
     """A bounding-box hierarchy over the triangles (m, 3, 3): median splits along the
     longest axis of the centroids. Returns (lo (k, 3), hi (k, 3), child (k,), first (k,),
     count (k,), order (m,)): a leaf has count > 0 and holds ``order[first:first + count]``,
-    an inner node has children ``child`` and ``child + 1``."""
+    an inner node has children ``child`` and ``child + 1``.
+
+    Each node's triangles are partitioned about their median centroid (linear time; a
+    sort per node made the build O(m log^2 m)), and the boxes are made bottom up: a leaf's
+    from its triangles, an inner node's from its two children's (the same minima and
+    maxima as from all its triangles). Any such hierarchy gives the same distances: a
+    query's answer is the least triangle distance, the boxes only skip work."""
     m = tri.shape[0]
     cen = np.empty((m, 3))
     for t in range(m):
@@ -83,8 +89,6 @@ def _build(tri):
             cen[t, k] = (tri[t, 0, k] + tri[t, 1, k] + tri[t, 2, k]) / 3.0
     order = np.arange(m)
     cap = 2 * m + 1
-    lo = np.empty((cap, 3))
-    hi = np.empty((cap, 3))
     child = np.full(cap, -1, dtype=np.int64)
     first = np.zeros(cap, dtype=np.int64)
     count = np.zeros(cap, dtype=np.int64)
@@ -94,15 +98,6 @@ def _build(tri):
     while top > 0:
         top -= 1
         node, a, b = stack[top, 0], stack[top, 1], stack[top, 2]
-        for k in range(3):
-            lo[node, k] = np.inf
-            hi[node, k] = -np.inf
-        for s in range(a, b):
-            t = order[s]
-            for v in range(3):
-                for k in range(3):
-                    lo[node, k] = min(lo[node, k], tri[t, v, k])
-                    hi[node, k] = max(hi[node, k], tri[t, v, k])
         if b - a <= LEAF:
             first[node], count[node] = a, b - a
             continue
@@ -114,15 +109,33 @@ def _build(tri):
                 c1 = max(c1, cen[order[s], k])
             if c1 - c0 > width:
                 axis, width = k, c1 - c0
-        part = order[a:b]
-        order[a:b] = part[np.argsort(cen[part, axis], kind="mergesort")]
         mid = (a + b) // 2
+        part = order[a:b]  # the mid - a smallest centroids first
+        order[a:b] = part[np.argpartition(cen[part, axis], mid - a)]
         child[node] = nodes
         stack[top, 0], stack[top, 1], stack[top, 2] = nodes, a, mid
         stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = nodes + 1, mid, b
         top += 2
         nodes += 2
-    return lo[:nodes], hi[:nodes], child[:nodes], first[:nodes], count[:nodes], order
+    lo = np.empty((nodes, 3))
+    hi = np.empty((nodes, 3))
+    for node in range(nodes - 1, -1, -1):  # children after their parent: made first
+        if count[node] > 0:
+            for k in range(3):
+                lo[node, k] = np.inf
+                hi[node, k] = -np.inf
+            for s in range(first[node], first[node] + count[node]):
+                t = order[s]
+                for v in range(3):
+                    for k in range(3):
+                        lo[node, k] = min(lo[node, k], tri[t, v, k])
+                        hi[node, k] = max(hi[node, k], tri[t, v, k])
+        else:
+            c = child[node]
+            for k in range(3):
+                lo[node, k] = min(lo[c, k], lo[c + 1, k])
+                hi[node, k] = max(hi[c, k], hi[c + 1, k])
+    return lo, hi, child[:nodes], first[:nodes], count[:nodes], order
 
 
 @numba.njit(cache=True)

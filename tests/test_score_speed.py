@@ -163,12 +163,26 @@ def test_scores_with_compiled_distances_equal_vtk_scores(monkeypatch):
     rounding and every F-score is the same number."""
     rec, gt, cloud = _case()
     ours = surface_metrics(rec, gt, cloud, count=6000)
-    monkeypatch.setattr(evaluate, "distances", vtk_distances)
+    monkeypatch.setattr(evaluate, "distances",
+                        lambda pts, mesh, tree=None: vtk_distances(pts, mesh))
     vtk = surface_metrics(rec, gt, cloud, count=6000)
     for got, want in ((ours[0], vtk[0]), (ours[0]["reachable"], vtk[0]["reachable"])):
         assert got["fscore"] == want["fscore"]
         for key in ("accuracy", "completeness", "chamfer_l1", "hausdorff", "hd95"):
             assert got[key] == pytest.approx(want[key], rel=1e-12)
+
+
+def test_the_hierarchies_are_built_once_for_both_halves(monkeypatch):
+    """``surface_metrics`` builds the ground truth's and the reconstruction's hierarchies
+    once, before its two halves run (a forked half inherits them), not once per half."""
+    from recon3d.score import closest
+
+    built = []
+    real = closest._build
+    monkeypatch.setattr(closest, "_build", lambda tri: built.append(len(tri)) or real(tri))
+    rec, gt, cloud = _case()
+    surface_metrics(rec, gt, cloud, count=6000)
+    assert sorted(built) == sorted([len(gt.mesh.faces), len(rec.faces)])
 
 
 def test_side_by_side_metrics_equal_serial():

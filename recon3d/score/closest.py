@@ -13,10 +13,12 @@ walks it nearest box first and skips every box no nearer than its best triangle 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numba
 import numpy as np
 
-__all__ = ["mesh_distances", "compile_kernels"]
+__all__ = ["MeshTree", "mesh_distances", "compile_kernels"]
 
 
 @numba.njit(cache=True)
@@ -190,8 +192,41 @@ def _query(points, tri, lo, hi, child, first, count, order):
     return out
 
 
+@dataclass(frozen=True)
+class MeshTree:
+    """A triangle mesh's bounding-box hierarchy (:func:`_build`), built once and queried
+    as often as needed (a forked process inherits it).
+
+    tri : (m, 3, 3) float -- the triangles; the other fields are :func:`_build`'s arrays.
+    """
+
+    tri: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    child: np.ndarray
+    first: np.ndarray
+    count: np.ndarray
+    order: np.ndarray
+
+    @classmethod
+    def of(cls, vertices, faces) -> MeshTree:
+        """The hierarchy of the mesh of (v, 3) float ``vertices`` and (m, 3) int ``faces``
+        (m >= 1)."""
+        tri = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64)[np.asarray(faces)])
+        if len(tri) == 0:
+            raise ValueError("mesh_distances: the mesh has no faces")
+        return cls(tri, *_build(tri))
+
+    def distances(self, points) -> np.ndarray:
+        """(n,) float: exact distance from each of (n, 3) ``points`` to the mesh."""
+        points = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 3)
+        return _query(points, self.tri, self.lo, self.hi, self.child, self.first, self.count,
+                      self.order)
+
+
 def mesh_distances(points, vertices, faces) -> np.ndarray:
-    """Exact distance from each point to a triangle mesh.
+    """Exact distance from each point to a triangle mesh (:class:`MeshTree`, built for
+    this call).
 
     Parameters
     ----------
@@ -202,11 +237,7 @@ def mesh_distances(points, vertices, faces) -> np.ndarray:
     -------
     (n,) float -- unsigned distances (equal to VTK's up to rounding).
     """
-    points = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 3)
-    tri = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64)[np.asarray(faces)])
-    if len(tri) == 0:
-        raise ValueError("mesh_distances: the mesh has no faces")
-    return _query(points, tri, *_build(tri))
+    return MeshTree.of(vertices, faces).distances(points)
 
 
 def compile_kernels() -> None:

@@ -51,13 +51,14 @@ from scipy.spatial import cKDTree
 
 from core2d.truth.resolvable import resolvable
 from recon3d.config import diagonal
-from recon3d.score.closest import mesh_distances
+from recon3d.score.closest import MeshTree, mesh_distances
 from recon3d.score.subdivide import subdivide_to_size
 from recon3d.records import Family
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
            "GroundTruthSamples", "classified_ground_truth", "surface_distances",
-           "coverage_mesh", "surface_metrics", "one_after_other", "distances", "scored_part"]
+           "coverage_mesh", "surface_metrics", "one_after_other", "distances", "mesh_tree",
+           "scored_part"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
 """F-score thresholds as shares of the ground truth's bounding-box diagonal."""
@@ -217,14 +218,25 @@ def contour_cloud(families: list[Family]) -> ContourCloud:
                         fam, slabs, np.concatenate(hole), np.concatenate(resolved))
 
 
-def distances(points, mesh: trimesh.Trimesh) -> np.ndarray:
+def distances(points, mesh: trimesh.Trimesh, tree: MeshTree | None = None) -> np.ndarray:
     """(n,) float: exact distance from (n, 3) points to a triangle mesh (compiled:
-    :func:`recon3d.score.closest.mesh_distances`)."""
+    :func:`recon3d.score.closest.mesh_distances`; ``tree``: the mesh's hierarchy, built
+    before, :func:`mesh_tree`)."""
     if len(points) == 0:
         return np.zeros(0)
     if len(mesh.faces) == 0:
         return np.full(len(points), np.inf)
+    if tree is not None:
+        return tree.distances(points)
     return mesh_distances(points, mesh.vertices, mesh.faces)
+
+
+def mesh_tree(mesh: trimesh.Trimesh | None) -> MeshTree | None:
+    """The distance hierarchy of ``mesh`` (None without a face): built once for the two
+    halves of :func:`surface_metrics`, which a forked child shares."""
+    if mesh is None or len(mesh.faces) == 0:
+        return None
+    return MeshTree.of(mesh.vertices, mesh.faces)
 
 
 def _sample(mesh, count: int, seed: int) -> np.ndarray:
@@ -349,12 +361,17 @@ def surface_metrics(surface: trimesh.Trimesh, gt: GroundTruthSamples, cloud: Con
     half_rec = len(rec) // 2
     half = len(gt.points) // 2 if scored is not None else 0
 
+    # each mesh's hierarchy built once, here: both halves query it (a forked one inherits it)
+    gt_tree = mesh_tree(gt.mesh) if len(rec) else None
+    rec_tree = mesh_tree(scored) if len(gt.points) else None
+
     def to_rec(pts):
-        return distances(pts, scored) if scored is not None else np.full(len(pts), np.inf)
+        return (distances(pts, scored, rec_tree) if scored is not None
+                else np.full(len(pts), np.inf))
 
     (d_rec0, d_gt0), (d_rec1, d_gt1) = pair(
-        lambda: (distances(rec[:half_rec], gt.mesh), to_rec(gt.points[:half])),
-        lambda: (distances(rec[half_rec:], gt.mesh), to_rec(gt.points[half:])))
+        lambda: (distances(rec[:half_rec], gt.mesh, gt_tree), to_rec(gt.points[:half])),
+        lambda: (distances(rec[half_rec:], gt.mesh, gt_tree), to_rec(gt.points[half:])))
     d_rec = np.concatenate([d_rec0, d_rec1])
     d_gt = np.concatenate([d_gt0, d_gt1])
     near = cloud.nearest(gt.points)

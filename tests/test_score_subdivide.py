@@ -1,6 +1,9 @@
 """The coloured ground truth's subdivision: trimesh's ``subdivide_to_size`` arrays, the same
 vertices and faces in the same order (``==``, dtypes too), looking only at the faces made in
 the round before."""
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import trimesh
@@ -8,7 +11,7 @@ import trimesh
 import meshes
 from recon3d.config import diagonal
 from recon3d.score import subdivide as subdivide_module
-from recon3d.score.evaluate import classified_ground_truth, contour_cloud
+from recon3d.score.evaluate import classified_ground_truth, contour_cloud, face_centres
 from recon3d.score.subdivide import subdivide_to_size
 from recon3d.surface.field import grid_step
 
@@ -56,13 +59,13 @@ def test_a_round_looks_only_at_the_faces_made_in_the_round_before(monkeypatch):
     """The speed decision itself: the faces whose edges are all short are set aside, so the
     rounds look at fewer faces than trimesh's (which looks at every face every round)."""
     seen = []
-    real = subdivide_module.faces_to_edges
+    real = subdivide_module._round
 
-    def counting(faces):
+    def counting(vertices, faces, max_edge):
         seen.append(len(faces))
-        return real(faces)
+        return real(vertices, faces, max_edge)
 
-    monkeypatch.setattr(subdivide_module, "faces_to_edges", counting)
+    monkeypatch.setattr(subdivide_module, "_round", counting)
     mesh = meshes.load("bored_block")
     d = diagonal(mesh)
     _, faces = subdivide_to_size(mesh.vertices, mesh.faces, 2 * grid_step(d / 200, d), 12)
@@ -78,3 +81,44 @@ def test_the_coloured_ground_truth_uses_it():
     gt = classified_ground_truth(mesh, cloud, edge)
     want_v, want_f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, edge, 12)
     assert np.array_equal(gt.vertices, want_v) and np.array_equal(gt.faces, want_f)
+
+
+_COMPILE_CHECK = """
+import numpy as np, trimesh
+from recon3d.score import subdivide
+kernels = (subdivide._long_edges, subdivide._made)
+assert not any(k.signatures for k in kernels)  # a fresh process: nothing compiled yet
+subdivide.compile_kernels()
+compiled = [list(k.signatures) for k in kernels]
+assert all(compiled), compiled
+mesh = trimesh.creation.icosphere(subdivisions=1)
+for v, f in ((mesh.vertices, mesh.faces), (mesh.vertices.astype(np.float32),
+             mesh.faces.astype(np.int32)), (np.asfortranarray(mesh.vertices), mesh.faces[::-1])):
+    subdivide.subdivide_to_size(v, f, 0.1, max_iter=12)
+assert [list(k.signatures) for k in kernels] == compiled
+"""
+
+
+def test_compile_kernels_compiles_what_a_run_calls():
+    """The first run compiles the subdivision beside the sensing (``compile_kernels``): in a
+    fresh process it gives the kernels the one signature that every call uses, whatever
+    the dtypes and memory order of the mesh's arrays, so a run compiles nothing more."""
+    proc = subprocess.run([sys.executable, "-c", _COMPILE_CHECK], capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+
+
+@pytest.mark.parametrize("name", ["fig18_overhangs", "gear"])
+def test_face_centres_are_trimeshs_numbers(name):
+    """The coloured ground truth classifies its faces at :func:`face_centres`: the very
+    floats of trimesh's ``triangles_center`` (a face on the boundary between two classes
+    keeps its class), on a subdivided scene and on random corners."""
+    mesh = meshes.load(name)
+    d = diagonal(mesh)
+    v, f = subdivide_to_size(mesh.vertices, mesh.faces, 2 * grid_step(d / 200, d), 12)
+    want = trimesh.Trimesh(v, f, process=False).triangles_center
+    assert np.array_equal(face_centres(v, f), want)
+    rng = np.random.default_rng(5)
+    v = rng.normal(size=(300, 3)) * 10.0 ** rng.integers(-3, 4, size=(300, 1))
+    f = rng.integers(0, 300, size=(2000, 3))
+    assert np.array_equal(face_centres(v, f), trimesh.Trimesh(v, f, process=False).triangles_center)

@@ -45,7 +45,7 @@ import trimesh
 
 from recon3d.io.side import Side, can_fork
 from recon3d.records import Family, SliceRun
-from recon3d.score.closest import compile_kernels as compile_distances
+from recon3d.score import compile_kernels as compile_scores
 from recon3d.sensing.kernels import cold_kernels, load_numba_target
 from recon3d.sensing.order import dispatch_order
 from recon3d.sensing.worker import SenseSettings, WorkerState
@@ -336,16 +336,17 @@ def _compile_here(families: list, settings: SenseSettings, tasks: list, out: lis
 
     Forked workers inherit the compiled kernels. Without this, every worker compiles the
     same kernels at the same time (the compile paid twice in CPU, on cores that the machine
-    may not have free). A child forked meanwhile compiles the point-to-mesh distances that
-    the scores and the coloured ground truth use after the sensing, on the core this process
+    may not have free). A child forked meanwhile compiles the point-to-mesh distances and the
+    subdivision that the scores and the coloured ground truth use after the sensing
+    (:func:`recon3d.score.compile_kernels`), on the core this process
     leaves idle (stopped if the sensing here raises: a Ctrl-C does not wait for it).
     :func:`cold_kernels` reads numba's cache indexes only; other backends compile a subset
     of the kernels and are not asked about.
     """
     if settings.backend != "embree" or len(tasks) < 2 or not cold_kernels():
         return 0
-    # the other core compiles the distances of the scores and coloured ground truth meanwhile
-    side = Side(compile_distances) if can_fork() else None
+    # the other core compiles the kernels of the scores and coloured ground truth meanwhile
+    side = Side(compile_scores) if can_fork() else None
     try:
         _sense_here(settings, families, tasks[:1], out, progress)
     except BaseException:  # a Ctrl-C or an error does not wait for that compile

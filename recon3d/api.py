@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import trimesh
 
 import meshes
@@ -288,6 +289,7 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
                         beside=plot.load_plotting if pictures else libs.pyvista)
     notes += sensed.nudge_notes
     drawing = side = None
+    halves: tuple[Side, ...] = ()
     try:
         if pictures and can_fork():  # slices.png needs the sensing only
             drawing = Side(_slices_png, sensed)
@@ -305,12 +307,17 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
             v, f, cov = side.result()
             gt = trimesh.Trimesh(v, f, process=False)
             gt.face_attributes["coverage"] = cov
-            side = Side(surface_distances, v, recon.surface, diagonal(mesh))
+            side = None
+            # its vertices' distances (10^5 - 10^6 of them: the longest call after the
+            # sensing) in two halves, each in a child, while this process scores
+            cut = len(v) // 2
+            halves = (Side(surface_distances, v[:cut], recon.surface, diagonal(mesh)),
+                      Side(surface_distances, v[cut:], recon.surface, diagonal(mesh)))
         surface, info = score(sensed, recon, pair=_side_by_side)
         doc = metrics_document(sensed, surface, info, unknown_chords(sensed))
-        if side is not None:
-            gt.vertex_attributes["distance"] = side.result()
-            side = None
+        if halves:
+            gt.vertex_attributes["distance"] = np.concatenate([h.result() for h in halves])
+            halves = ()
         png = None
         if drawing is not None:
             try:
@@ -319,7 +326,7 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
                 png = None
             drawing = None
     finally:
-        for child in (side, drawing):
+        for child in (side, drawing, *halves):
             if child is not None:
                 child.stop()
     return Result(mesh, sensed, recon, doc, notes, _coverage=gt, _slices_png=png)

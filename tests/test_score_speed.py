@@ -55,27 +55,51 @@ def test_mesh_distances_equal_vtk(k):
 
 _COMPILE_CHECK = """
 import numpy as np, trimesh
-from recon3d.score import closest
-kernels = (closest._query, closest._build)
+from recon3d.score import {module} as m
+kernels = tuple(getattr(m, name) for name in {kernels!r})
 assert not any(k.signatures for k in kernels)  # a fresh process: nothing compiled yet
-closest.compile_kernels()
+m.compile_kernels()
 compiled = [list(k.signatures) for k in kernels]
 assert all(compiled), compiled
 mesh = trimesh.creation.icosphere(subdivisions=2)
-closest.mesh_distances(np.asfortranarray(mesh.sample(100, seed=1)), mesh.vertices, mesh.faces)
-closest.mesh_distances(mesh.vertices[::2].astype(np.float32),
-                       mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32))
+{calls}
 assert [list(k.signatures) for k in kernels] == compiled
+"""
+_DISTANCE_CALLS = """
+m.mesh_distances(np.asfortranarray(mesh.sample(100, seed=1)), mesh.vertices, mesh.faces)
+m.mesh_distances(mesh.vertices[::2].astype(np.float32),
+                 mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32))
+"""
+_SUBDIVIDE_CALLS = """
+m.subdivide_to_size(mesh.vertices, mesh.faces, 0.1, max_iter=12)
+m.subdivide_to_size(mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32), 0.1, 12)
+m.subdivide_to_size(np.asfortranarray(mesh.vertices), mesh.faces[::-1], 0.1, max_iter=12)
 """
 
 
-def test_compile_kernels_compiles_what_a_run_calls():
-    """The first run compiles the distances beside the sensing (``compile_kernels``): in a
-    fresh process it gives the entry points (their callees are compiled into them, or load
+@pytest.mark.parametrize("module, kernels, calls", [
+    ("closest", ("_query", "_build"), _DISTANCE_CALLS),
+    ("subdivide", ("_long_edges", "_made"), _SUBDIVIDE_CALLS)], ids=["distances", "subdivide"])
+def test_compile_kernels_compiles_what_a_run_calls(module, kernels, calls):
+    """The first run compiles the distances and the coloured ground truth's subdivision
+    beside the sensing (``recon3d.score.compile_kernels``): in a fresh process each module's
+    ``compile_kernels`` gives the entry points (their callees are compiled into them, or load
     inside them from numba's cache) the signatures that every call a run makes uses,
     whatever the dtypes and memory order of its arrays, so those compile nothing more."""
-    proc = subprocess.run([sys.executable, "-c", _COMPILE_CHECK], capture_output=True,
-                          text=True, timeout=600)
+    code = _COMPILE_CHECK.format(module=module, kernels=kernels, calls=calls)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+
+
+def test_the_score_kernels_compile_together():
+    """``recon3d.score.compile_kernels`` (what the first run's side child calls) compiles
+    both modules' kernels."""
+    code = ("from recon3d import score\nfrom recon3d.score import closest, subdivide\n"
+            "score.compile_kernels()\n"
+            "assert closest._query.signatures and subdivide._made.signatures\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=600)
     assert proc.returncode == 0, proc.stderr[-2000:]
 
 

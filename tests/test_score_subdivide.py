@@ -1,9 +1,6 @@
 """The coloured ground truth's subdivision: trimesh's ``subdivide_to_size`` arrays, the same
 vertices and faces in the same order (``==``, dtypes too), looking only at the faces made in
 the round before."""
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 import trimesh
@@ -82,30 +79,6 @@ def test_the_coloured_ground_truth_uses_it():
     want_v, want_f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, edge, 12)
     assert np.array_equal(gt.vertices, want_v) and np.array_equal(gt.faces, want_f)
 
-
-_COMPILE_CHECK = """
-import numpy as np, trimesh
-from recon3d.score import subdivide
-kernels = (subdivide._long_edges, subdivide._made)
-assert not any(k.signatures for k in kernels)  # a fresh process: nothing compiled yet
-subdivide.compile_kernels()
-compiled = [list(k.signatures) for k in kernels]
-assert all(compiled), compiled
-mesh = trimesh.creation.icosphere(subdivisions=1)
-for v, f in ((mesh.vertices, mesh.faces), (mesh.vertices.astype(np.float32),
-             mesh.faces.astype(np.int32)), (np.asfortranarray(mesh.vertices), mesh.faces[::-1])):
-    subdivide.subdivide_to_size(v, f, 0.1, max_iter=12)
-assert [list(k.signatures) for k in kernels] == compiled
-"""
-
-
-def test_compile_kernels_compiles_what_a_run_calls():
-    """The first run compiles the subdivision beside the sensing (``compile_kernels``): in a
-    fresh process it gives the kernels the one signature that every call uses, whatever
-    the dtypes and memory order of the mesh's arrays, so a run compiles nothing more."""
-    proc = subprocess.run([sys.executable, "-c", _COMPILE_CHECK], capture_output=True,
-                          text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr[-2000:]
 
 
 @pytest.mark.parametrize("name", ["fig18_overhangs", "gear"])

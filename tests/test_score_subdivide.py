@@ -8,8 +8,8 @@ import trimesh
 import meshes
 from recon3d.config import diagonal
 from recon3d.score import subdivide as subdivide_module
-from recon3d.score.evaluate import classified_ground_truth, contour_cloud, face_centres
-from recon3d.score.subdivide import subdivide_to_size
+from recon3d.score.evaluate import classified_ground_truth, contour_cloud
+from recon3d.score.subdivide import face_centres, subdivide_to_size
 from recon3d.surface.field import grid_step
 
 

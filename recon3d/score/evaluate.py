@@ -52,13 +52,13 @@ from scipy.spatial import cKDTree
 from core2d.truth.resolvable import resolvable
 from recon3d.config import diagonal
 from recon3d.score.closest import MeshTree, mesh_distances
-from recon3d.score.subdivide import subdivide_to_size
+from recon3d.score.subdivide import face_centres, subdivide_to_size
 from recon3d.records import Family
 
 __all__ = ["FSCORE_SHARES", "SAMPLES", "Domain", "ContourCloud", "contour_cloud", "on_holes",
            "GroundTruthSamples", "classified_ground_truth", "surface_distances",
            "coverage_mesh", "surface_metrics", "one_after_other", "distances", "mesh_tree",
-           "scored_part", "face_centres"]
+           "scored_part"]
 
 FSCORE_SHARES = {"0.5%": 0.005, "1%": 0.01, "2%": 0.02}
 """F-score thresholds as shares of the ground truth's bounding-box diagonal."""
@@ -295,17 +295,6 @@ def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
     out.face_attributes["coverage"] = cloud.classify(face_centres(v, f))
     return out
 
-
-def face_centres(vertices, faces) -> np.ndarray:
-    """(m, 3) float: the centre of each face, the numbers of trimesh's ``triangles_center``
-    (``triangles.mean(axis=1)``: the corners added in order, then divided by 3) without
-    its (m, 3, 3) copy of the triangles and its cache's hashing (half a second at 10^6 faces).
-
-    >>> face_centres(np.array([[0.0, 0, 0], [3, 0, 0], [0, 3, 0]]), np.array([[0, 1, 2]]))
-    array([[1., 1., 0.]])
-    """
-    v, f = np.asarray(vertices, dtype=np.float64), np.asarray(faces)
-    return (v[f[:, 0]] + v[f[:, 1]] + v[f[:, 2]]) / 3.0
 
 
 def surface_distances(points, surface: trimesh.Trimesh, diag: float) -> np.ndarray:

@@ -4,8 +4,10 @@
 faces, the same arrays in the same order, with two savings: a face whose three edges are
 short is final (its edges never change), so a round looks only at the faces made in the
 round before (trimesh looks again at all of them, its edge sort and unique over every face);
-and a round is one compiled pass (:func:`_round`) instead of numpy expressions over every
-edge (a ground truth of 10^5 - 10^6 faces: ~5x faster).
+and a round is two compiled kernels around numpy's ``unique`` of the long edges
+(:func:`_round`) instead of numpy expressions over every edge (a ground truth of 10^5 - 10^6
+faces: ~6x faster). :func:`face_centres` gives trimesh's ``triangles_center`` of the result,
+where the faces are classified, without trimesh's copy of the triangles.
 
 Why the arrays are the same: a round's faces are, in order, those already final and those
 just made, so keeping the final ones aside and appending each round's final ones keeps
@@ -23,7 +25,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["subdivide_to_size", "compile_kernels"]
+__all__ = ["subdivide_to_size", "face_centres", "compile_kernels"]
 
 
 @numba.njit(cache=True)
@@ -185,6 +187,18 @@ def subdivide_to_size(vertices, faces, max_edge: float, max_iter: int = 10
         stack = np.vstack(points)
         active = made
     return np.vstack(points), np.vstack(final).astype(np.int64)
+
+
+def face_centres(vertices, faces) -> np.ndarray:
+    """(m, 3) float: the centre of each face, the numbers of trimesh's ``triangles_center``
+    (``triangles.mean(axis=1)``: the corners added in order, then divided by 3) without
+    its (m, 3, 3) copy of the triangles and its cache's hashing (half a second at 10^6 faces).
+
+    >>> face_centres(np.array([[0.0, 0, 0], [3, 0, 0], [0, 3, 0]]), np.array([[0, 1, 2]]))
+    array([[1., 1., 0.]])
+    """
+    v, f = np.asarray(vertices, dtype=np.float64), np.asarray(faces)
+    return (v[f[:, 0]] + v[f[:, 1]] + v[f[:, 2]]) / 3.0
 
 
 def compile_kernels() -> None:

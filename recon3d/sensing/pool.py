@@ -283,17 +283,32 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
     ------
     WorkerDied -- a worker process died; the other workers are stopped first.
     """
-    global _STATE
     out: list = [None] * len(tasks)
     fork = "fork" in multiprocessing.get_all_start_methods()
-    first = 0
-    if fork and min(int(jobs), len(tasks)) > 1:
-        load_numba_target()  # once here, inherited by every worker (and later side process)
-        first = _compile_here(families, settings, tasks, out, progress)
-    jobs = max(1, min(int(jobs), len(tasks) - first))
-    if jobs == 1:
-        _sense_here(settings, families, tasks, out, progress, start=first)
-        return out
+    first, compiling, done = 0, None, False
+    try:
+        if fork and min(int(jobs), len(tasks)) > 1:
+            load_numba_target()  # once here, inherited by every worker (and later side process)
+            first, compiling = _compile_here(families, settings, tasks, out, progress)
+        jobs = max(1, min(int(jobs), len(tasks) - first))
+        if jobs == 1:
+            _sense_here(settings, families, tasks, out, progress, start=first)
+        else:
+            _sense_workers(mesh, families, settings, tasks, jobs, progress, beside, out, first,
+                           fork)
+        done = True
+    finally:  # the scores' compile child: long done by now; stopped on an error or a Ctrl-C
+        if compiling is not None and done:
+            _finish(compiling)
+        elif compiling is not None:
+            compiling.stop()
+    return out
+
+
+def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, jobs: int,
+                   progress, beside, out: list, first: int, fork: bool) -> None:
+    """:func:`sense_all` with ``jobs`` worker processes, from ``tasks[first]`` on."""
+    global _STATE
     if fork:
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
         _STATE = WorkerState(settings, families)  # inherited by the forked workers
@@ -316,7 +331,6 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
         workers.stop(graceful=done)
         if thread is not None:
             thread.join()
-    return out
 
 
 def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,
@@ -330,21 +344,24 @@ def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,
 
 
 def _compile_here(families: list, settings: SenseSettings, tasks: list, out: list,
-                  progress) -> int:
+                  progress) -> tuple[int, Side | None]:
     """When the Embree kernels are not in numba's cache, sense the first task here (which
-    compiles them, once) before any worker is forked; how many tasks that sensed (0 or 1).
+    compiles them, once) before any worker is forked; how many tasks that sensed (0 or 1),
+    and the child compiling the scores' kernels (None: none).
 
     Forked workers inherit the compiled kernels. Without this, every worker compiles the
     same kernels at the same time (the compile paid twice in CPU, on cores that the machine
     may not have free). A child forked meanwhile compiles the point-to-mesh distances and the
     subdivision that the scores and the coloured ground truth use after the sensing
-    (:func:`recon3d.score.compile_kernels`), on the core this process
-    leaves idle (stopped if the sensing here raises: a Ctrl-C does not wait for it).
+    (:func:`recon3d.score.compile_kernels`), on the core this process leaves idle; the
+    workers do not wait for it (:func:`sense_all` does, at its end; stopped if the sensing
+    raises: a Ctrl-C does not wait for it). The two compiles take about as long (10 - 12 CPU
+    s each on a slow day), so waiting for it here cost up to a few seconds of both cores.
     :func:`cold_kernels` reads numba's cache indexes only; other backends compile a subset
     of the kernels and are not asked about.
     """
     if settings.backend != "embree" or len(tasks) < 2 or not cold_kernels():
-        return 0
+        return 0, None
     # the other core compiles the kernels of the scores and coloured ground truth meanwhile
     side = Side(compile_scores) if can_fork() else None
     try:
@@ -353,13 +370,11 @@ def _compile_here(families: list, settings: SenseSettings, tasks: list, out: lis
         if side is not None:
             side.stop()
         raise
-    if side is not None:
-        _finish(side)
-    return 1
+    return 1, side
 
 
 def _finish(side: Side) -> None:
-    """Wait for the distance kernels' compile (its failure is the later call's to report)."""
+    """Wait for the scores' kernels' compile (its failure is the later call's to report)."""
     try:
         side.result()
     except RuntimeError:

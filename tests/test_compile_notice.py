@@ -62,6 +62,9 @@ def test_the_workers_do_not_wait_for_the_scores_compile(tmp_path, monkeypatch):
 
     monkeypatch.setattr(pool, "cold_kernels", lambda: True)
     monkeypatch.setattr(pool, "compile_scores", slow_compile)
+    # an earlier test of this process may have rendered (OpenGL mapped: no side process);
+    # this child only sleeps
+    monkeypatch.setattr(pool, "can_fork", lambda: True)
     seen = []
     recon3d.run("fig17_pocket", slices=4, jobs=2, progress=lambda s: seen.append(flag.exists()))
     assert len(seen) == 4 and not seen[0]

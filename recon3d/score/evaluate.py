@@ -296,7 +296,6 @@ def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
     return out
 
 
-
 def surface_distances(points, surface: trimesh.Trimesh, diag: float) -> np.ndarray:
     """(n,) float: distance of (n, 3) points to the scored part of a labelled surface
     (:func:`scored_part`) in % of ``diag`` (the unit of ``FSCORE_SHARES``; inf without a

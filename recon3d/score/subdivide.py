@@ -171,7 +171,6 @@ def subdivide_to_size(vertices, faces, max_edge: float, max_iter: int = 10
     (9, True)
     """
     points = [np.array(vertices, dtype=np.float64, copy=True).reshape(-1, 3)]
-    total = len(points[0])
     active = np.array(faces, dtype=np.int64, copy=True).reshape(-1, 3)
     stack = np.ascontiguousarray(points[0])
     final = []
@@ -183,7 +182,6 @@ def subdivide_to_size(vertices, faces, max_edge: float, max_iter: int = 10
         if i >= max_iter:
             raise ValueError("max_iter exceeded!")
         points.append(fresh)
-        total += len(fresh)
         stack = np.vstack(points)
         active = made
     return np.vstack(points), np.vstack(final).astype(np.int64)
@@ -202,8 +200,9 @@ def face_centres(vertices, faces) -> np.ndarray:
 
 
 def compile_kernels() -> None:
-    """Compile (or load from numba's cache) :func:`_round` with the one signature
-    :func:`subdivide_to_size` calls it with, on a triangle: the first run of a machine does
+    """Compile (or load from numba's cache) the kernels of a round (:func:`_long_edges`,
+    :func:`_made`) with the one signature :func:`subdivide_to_size` calls them with, on a
+    triangle: the first run of a machine does
     this beside the sensing (:mod:`recon3d.sensing.pool`), so the coloured ground truth after
     the sensing finds it in the cache.
 

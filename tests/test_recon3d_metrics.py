@@ -120,3 +120,24 @@ def test_public_api():
     assert set(recon3d.__all__) >= {"run", "Result"}
     for name in recon3d.__all__:
         assert getattr(recon3d, name) is not None
+
+
+def test_nearest_on_every_core_is_the_same(monkeypatch):
+    """The coloured ground truth classifies its 10^5 - 10^6 faces with the k-d tree's query
+    on every core (``workers=-1``): each point's nearest sample is the one-thread answer, and
+    :func:`classified_ground_truth` asks for it."""
+    from recon3d.score import evaluate
+
+    cloud = _cloud(reachable_where=lambda p: p[:, 0] > 0, covered_where=lambda p: p[:, 1] > 0)
+    pts = np.random.default_rng(4).normal(size=(20000, 3)) * R
+    assert np.array_equal(cloud.nearest(pts, workers=-1), cloud.nearest(pts))
+    asked = []
+    real = evaluate.ContourCloud.classify
+
+    def spy(self, points, workers=1):
+        asked.append(workers)
+        return real(self, points, workers)
+
+    monkeypatch.setattr(evaluate.ContourCloud, "classify", spy)
+    evaluate.classified_ground_truth(trimesh.creation.icosphere(2, radius=R), cloud, R / 4)
+    assert asked == [-1]

@@ -112,14 +112,14 @@ class ContourCloud:
     in_hole: np.ndarray | None = field(default=None)
     resolvable: np.ndarray | None = field(default=None)
 
-    def classify(self, points) -> np.ndarray:
+    def classify(self, points, workers: int = 1) -> np.ndarray:
         """(n,) int8 for (n, 3) points: 0 in no family's slab, else the class of
         the nearest sample among the families whose slab holds the point:
         1 touched, 2 reachable but missed, 3 unreachable, 4 inside a hole
         (unreachable, on a hole loop of the section), 5 reachable, not touched, in an
         opening narrower than eps (:mod:`core2d.truth.resolvable`: §3.1 closes it by W2;
-        reachable like 1 and 2)."""
-        return self.classes(self.nearest(points))
+        reachable like 1 and 2). ``workers``: :meth:`nearest`'s threads."""
+        return self.classes(self.nearest(points, workers))
 
     def classes(self, nearest: np.ndarray) -> np.ndarray:
         """(n,) int8: :meth:`classify`'s class of each :meth:`nearest` sample (-1: 0)."""
@@ -142,9 +142,10 @@ class ContourCloud:
         ok = self.reachable if self.resolvable is None else self.reachable & self.resolvable
         return (j >= 0) & ok[np.maximum(j, 0)]
 
-    def nearest(self, points) -> np.ndarray:
+    def nearest(self, points, workers: int = 1) -> np.ndarray:
         """(n,) int for (n, 3) points: the nearest sample among the families whose slab
-        holds the point (-1 in no family's slab)."""
+        holds the point (-1 in no family's slab). ``workers``: threads of the k-d tree's
+        query (-1: one per core; each point's answer is the same)."""
         points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
         best = np.full(len(points), np.inf)
         out = np.full(len(points), -1, dtype=np.int64)
@@ -156,7 +157,7 @@ class ContourCloud:
             inside = np.flatnonzero(slab.contains(points, pad))
             if len(sel) == 0 or len(inside) == 0:
                 continue
-            d, i = cKDTree(self.points[sel]).query(points[inside])
+            d, i = cKDTree(self.points[sel]).query(points[inside], workers=workers)
             better = d < best[inside]
             best[inside[better]] = d[better]
             out[inside[better]] = sel[i][better]
@@ -292,7 +293,9 @@ def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
     :func:`coverage_mesh` that needs the sensing only, not the surface."""
     v, f = subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
-    out.face_attributes["coverage"] = cloud.classify(face_centres(v, f))
+    # 10^5 - 10^6 faces, classified on every core: the main process ends its reconstruction
+    # meanwhile and then waits for this
+    out.face_attributes["coverage"] = cloud.classify(face_centres(v, f), workers=-1)
     return out
 
 

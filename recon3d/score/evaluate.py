@@ -289,12 +289,10 @@ def scored_part(surface: trimesh.Trimesh) -> trimesh.Trimesh | None:
 def classified_ground_truth(mesh: trimesh.Trimesh, cloud: ContourCloud,
                             max_edge: float) -> trimesh.Trimesh:
     """Ground truth subdivided to ``max_edge`` with a class per face
-    (``face_attributes['coverage']`` (f,) int8, :meth:`ContourCloud.classify`): the part of
-    :func:`coverage_mesh` that needs the sensing only, not the surface."""
+    (``face_attributes['coverage']`` (f,) int8, :meth:`ContourCloud.classify` on every core:
+    10^5 - 10^6 faces): the part of :func:`coverage_mesh` that needs the sensing only."""
     v, f = subdivide_to_size(mesh.vertices, mesh.faces, max_edge, max_iter=12)
     out = trimesh.Trimesh(v, f, process=False)
-    # 10^5 - 10^6 faces, classified on every core: the main process ends its reconstruction
-    # meanwhile and then waits for this
     out.face_attributes["coverage"] = cloud.classify(face_centres(v, f), workers=-1)
     return out
 

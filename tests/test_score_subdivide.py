@@ -80,7 +80,6 @@ def test_the_coloured_ground_truth_uses_it():
     assert np.array_equal(gt.vertices, want_v) and np.array_equal(gt.faces, want_f)
 
 
-
 @pytest.mark.parametrize("name", ["fig18_overhangs", "gear"])
 def test_face_centres_are_trimeshs_numbers(name):
     """The coloured ground truth classifies its faces at :func:`face_centres`: the very

@@ -277,11 +277,10 @@ def revisit_one(run: Exploration, area):
     lines = proof_lines(run, area)
     if not lines and candidate:
         return "no line from F crosses the lid past the recorded contour"
+    sweep = False  # the sweep's passes are planned when the spread ones are spent
     if lines:
         plan = passes(lines, area.a, area.b)
-        if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
-            plan += [(p, d) for p, d in _sweep(lines, area.dist, run.eps)
-                     if steep_enough(run.res, area.a, area.b, d)]
+        sweep = candidate
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
                                     margin=run.res.tip_zone, min_gap=run.angle_tol)
@@ -292,7 +291,12 @@ def revisit_one(run: Exploration, area):
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
     touches = (Touches(run.res, aim.a, aim.b, lid_end_radius(run.res, area.dist))
                if lines and applies(run.res) else None)  # a noisy sensor's W2 by touch
-    while k < len(plan):
+    while k < len(plan) or sweep:
+        if k == len(plan):  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
+            plan += [(p, d, None) for p, d in _sweep(lines, area.dist, run.eps)
+                     if steep_enough(run.res, area.a, area.b, d)]
+            sweep = False
+            continue
         point, direction, shift = plan[k]
         k += 1
         if not run.budget():

@@ -30,7 +30,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
    and its free directions (:func:`passes`); then, if the lid could be W3,
-   one pass every eps/2 along the lid, up to ``MAX_SWEEP``. With a noisy
+   one pass every eps/2 along the lid, up to ``MAX_SWEEP`` (planned only once
+   the spread passes found nothing: most lids split before, and the sweep's
+   lid samples are then never solved). With a noisy
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
    pass stopped in front of the lid, and contacts on the lid's line beyond

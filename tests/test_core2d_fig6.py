@@ -14,7 +14,8 @@ import pytest
 from shapely.geometry import Point
 
 from core2d.planner.areas import Area, pivot_G
-from core2d.planner.revisit import MAX_SWEEP, MAX_TRIES, revisit
+from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES
+from core2d.planner.revisit import revisit
 from core2d.readings import LEFT, RIGHT, TIP
 from figure_scenes import (GRAZE_AWAY, GRAZE_DIR, LIP_LEFT, OVERHANG_LEFT, SLIT, SLIT_CORNER, block,
                            chain, dist_to_contour, graze_point, make_probe, new_run, place, pose_to,

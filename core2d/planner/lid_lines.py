@@ -7,7 +7,7 @@ hundreds of samples against thousands of recorded segments). The planner
 then needs little of that answer: whether any free line is left (the W3
 proof of the revisit, §4.2.1 extended to recorded lids) and, for each pass it
 plans, the free sample nearest a position along the lid
-(:func:`core2d.planner.revisit.passes`). :class:`FreeLines` answers those two
+(:mod:`core2d.planner.pass_plan`). :class:`FreeLines` answers those two
 questions sample by sample, nearest first, and stops at the first free
 sample: every sample's gap is computed exactly as the whole batch would
 compute it (the lid question is independent per sample), so the lines and

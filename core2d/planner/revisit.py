@@ -29,10 +29,10 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    :func:`~core2d.planner.short_lids.lid_end_radius`)
    splits the area into (A_i, C) and (C, B_i), which
    go back to the paper's flow. The first passes are spread over the lid
-   and its free directions (:func:`passes`); then, if the lid could be W3,
-   one pass every eps/2 along the lid, up to ``MAX_SWEEP`` (planned only once
-   the spread passes found nothing: most lids split before, and the sweep's
-   lid samples are then never solved). With a noisy
+   and its free directions; then, if the lid could be W3, one pass every
+   eps/2 along the lid, up to ``MAX_SWEEP`` (:mod:`core2d.planner.pass_plan`:
+   each pass is planned when it is next, so a lid split early leaves the rest
+   of its lid question unsolved). With a noisy
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
    pass stopped in front of the lid, and contacts on the lid's line beyond
@@ -98,6 +98,7 @@ from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import covered
 from core2d.planner.openings import soften_passed
+from core2d.planner.pass_plan import PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
@@ -109,41 +110,7 @@ from core2d.planner.tracing import reread_pass
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
-__all__ = ["revisit", "finish", "lid_like", "proof_lines", "in_reach",
-           "MAX_TRIES", "MAX_SWEEP"]
-
-#: spread passes (:func:`passes`) before the sweep at resolution eps
-MAX_TRIES = 6
-#: most passes of the sweep along one lid
-MAX_SWEEP = 48
-#: (position along the lid A -> B, which way to steer in the free gap)
-_PLAN = ((0.5, 0.0), (0.9, 1.0), (0.1, -1.0), (0.3, 0.0), (0.7, 0.0), (0.5, 1.0))
-
-
-def passes(lines, a, b):
-    """Spread passes ``(point, direction)`` through the lid, in the order of
-    ``_PLAN``: for each planned position the nearest free lid sample, its
-    direction at the middle of the free gap (steer 0) or at 0.1 / 0.9 of it,
-    whichever edge leans towards B (steer +1) or A (steer -1)."""
-    out = []
-    ab = np.asarray(b, float) - a
-    for (pos, steer), ln in zip(_PLAN, lines.nearest_many([pos for pos, _ in _PLAN])):
-        if steer == 0:
-            out.append((ln.point, ln.direction))
-            continue
-        d0, d1 = ln.turned(0.1), ln.turned(0.9)
-        toward_b, toward_a = (d0, d1) if d0 @ ab > d1 @ ab else (d1, d0)
-        out.append((ln.point, toward_b if steer > 0 else toward_a))
-    return out
-
-
-def _sweep(lines, length, eps):
-    """One pass every eps/2 along the lid (the nearest free sample), at most
-    ``MAX_SWEEP``, alternately at 1/4 and 3/4 of its free gap."""
-    k = int(min(MAX_SWEEP, max(2, np.ceil(2 * length / eps))))
-    picks = lines.nearest_many((np.arange(k) + 0.5) / k)
-    return [(ln.point, ln.turned(0.25 + 0.5 * (n % 2))) for n, ln in enumerate(picks)]
-
+__all__ = ["revisit", "finish", "lid_like", "proof_lines", "in_reach"]
 
 def lid_like(run: Exploration, area) -> bool:
     """Step 2: the lid crosses no recorded contour."""
@@ -279,28 +246,23 @@ def revisit_one(run: Exploration, area):
     lines = proof_lines(run, area)
     if not lines and candidate:
         return "no line from F crosses the lid past the recorded contour"
-    sweep = False  # the sweep's passes are planned when the spread ones are spent
-    if lines:
-        plan = passes(lines, area.a, area.b)
-        sweep = candidate
+    if lines:  # the spread passes, then (a W3 candidate) the sweep: each planned when next
+        sources = [((p, d, None) for p, d in spread(lines, area.a, area.b))]
+        if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
+            sources.append((p, d, None) for p, d in sweep(lines, area.dist, run.eps)
+                           if steep_enough(run.res, area.a, area.b, d))
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
                                     margin=run.res.tip_zone, min_gap=run.angle_tol)
-        plan = passes(back, area.b, area.a) if back else []
+        sources = [((p, d, None) for p, d in spread(back, area.b, area.a))] if back else []
     ends_only, escaped = True, False
     blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
-    plan, k = [(p, d, None) for p, d in plan], 0
+    plan = PassPlan(sources)
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
     touches = (Touches(run.res, aim.a, aim.b, lid_end_radius(run.res, area.dist))
                if lines and applies(run.res) else None)  # a noisy sensor's W2 by touch
-    while k < len(plan) or sweep:
-        if k == len(plan):  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
-            plan += [(p, d, None) for p, d in _sweep(lines, area.dist, run.eps)
-                     if steep_enough(run.res, area.a, area.b, d)]
-            sweep = False
-            continue
-        point, direction, shift = plan[k]
-        k += 1
+    while (planned := plan.next()) is not None:
+        point, direction, shift = planned
         if not run.budget():
             return run.deferred.append(area)  # the budget ran out: still unknown
         if blockers.stops(point, direction):  # would meet contour a pass stopped at
@@ -327,9 +289,9 @@ def revisit_one(run: Exploration, area):
             blockers.add(area.a, area.b, pose_c.joint, c)
         again = None if c is None else aim.landed(point, direction, c, shift)
         if again is not None:  # a grazing pass landed off the middle: its line shifted
-            plan.insert(k, again)
+            plan.push(again)
     note = f"{area.tries} passes through the lid found nothing new"
-    if not plan:
+    if not plan.count:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "
                                           "crosses recorded contour")
     if escaped:

@@ -39,7 +39,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["free_gaps", "segmented_gap"]
+__all__ = ["free_gaps", "joined_segments", "segmented_gap"]
 
 
 def segmented_gap(row, st, en, nrows, width, circular=False):
@@ -89,7 +89,7 @@ def segmented_gap(row, st, en, nrows, width, circular=False):
 
 
 def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
-              chunk: int = 500_000):
+              chunk: int = 500_000, joined=None):
     """Widest open gap of free directions at each point, and its middle.
 
     Parameters
@@ -104,6 +104,8 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         that point), -1 for none.
     atol : float -- segments within ``atol`` of the point block nothing.
     chunk : int -- points x segments pairs handled at once (memory bound).
+    joined : (n,) bool, optional -- :func:`joined_segments` of the segments, when the
+        caller asks about the same segments many times (computed here otherwise).
 
     Returns
     -------
@@ -120,7 +122,7 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
     step = max(1, chunk // max(len(a), 1))
     if c > step:
         parts = [free_gaps(p[i:i + step], tg[i:i + step], a, b, inner[i:i + step],
-                           None if own is None else own[i:i + step], atol, chunk)
+                           None if own is None else own[i:i + step], atol, chunk, joined)
                  for i in range(0, c, step)]
         return np.concatenate([w for w, _ in parts]), np.concatenate([g for _, g in parts])
     if inner.all() and len(a):
@@ -130,8 +132,7 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         k = c * len(a)  # at most ``chunk`` pairs: room for all, one pass
         row, ends = np.empty(k, np.int64), np.empty((k, 2), np.int64)
         y, x = np.empty(2 * k), np.empty(2 * k)
-        joined = np.zeros(len(a), dtype=np.bool_)  # segment j starts where j - 1 ends
-        joined[1:] = (a[1:] == b[:-1]).all(axis=1)
+        joined = joined_segments(a, b) if joined is None else joined
         k, v = _kept_pairs(p, tx, ty, a, b, atol, own, joined, row, ends, y, x)
         width, psi = np.empty(c), np.empty(c)
         ps = np.arctan2(y[:v], x[:v], out=y[:v])  # numpy's, as below; in place
@@ -139,6 +140,20 @@ def free_gaps(points, tangents, seg_a, seg_b, inner=None, own=None, atol=0.0,
         angle = np.arctan2(ty, tx) - psi
         return width, (angle + np.pi) % (2 * np.pi) - np.pi
     return _vectorised(p, tg, a, b, inner, own, atol)
+
+
+def joined_segments(seg_a, seg_b) -> np.ndarray:
+    """(n,) bool: segment j starts where segment j - 1 ends (``seg_a[j] == seg_b[j - 1]``).
+
+    >>> joined_segments(np.array([[0., 0.], [1., 0.], [5., 5.]]),
+    ...                 np.array([[1., 0.], [2., 0.], [6., 5.]])).tolist()
+    [False, True, False]
+    """
+    a = np.asarray(seg_a, dtype=np.float64).reshape(-1, 2)
+    b = np.asarray(seg_b, dtype=np.float64).reshape(-1, 2)
+    joined = np.zeros(len(a), dtype=np.bool_)
+    joined[1:] = (a[1:] == b[:-1]).all(axis=1)
+    return joined
 
 
 def _vectorised(p, tg, a, b, inner, own, atol):

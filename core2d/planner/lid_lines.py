@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core2d.visibility import free_gaps
+from core2d.visibility import free_gaps, joined_segments
 
 __all__ = ["FreeLine", "FreeLines"]
 
@@ -71,13 +71,17 @@ class FreeLines:
         self.width, self.angle = np.full(k, np.nan), np.full(k, np.nan)
         self._solved = np.zeros(k, dtype=bool)
         self._all = None
+        self._joined = None  # of the recorded segments: computed once for every solve
 
     def _solve(self, idx) -> None:
         """Solve the samples ``idx`` (int array) not solved yet."""
         idx = idx[~self._solved[idx]]
         if len(idx):
+            if self._joined is None:
+                self._joined = joined_segments(self.seg_a, self.seg_b)
             self.width[idx], self.angle[idx] = free_gaps(self.points[idx], self.tangent[idx],
-                                                         self.seg_a, self.seg_b)
+                                                         self.seg_a, self.seg_b,
+                                                         joined=self._joined)
             self._solved[idx] = True
 
     def _line(self, i) -> FreeLine:

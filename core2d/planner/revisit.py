@@ -112,6 +112,7 @@ if TYPE_CHECKING:  # the planner state that drives this module; typing only
 
 __all__ = ["revisit", "finish", "lid_like", "proof_lines", "in_reach"]
 
+
 def lid_like(run: Exploration, area) -> bool:
     """Step 2: the lid crosses no recorded contour."""
     return not run.known.crosses(area.a, area.b, run.res.tip_zone)

@@ -7,8 +7,8 @@ A look at a deferred area A_iB_i makes up to ``MAX_TRIES`` spread passes through
 (:func:`sweep`), until one finds a new contact and splits the area. Each pass goes
 through the free lid sample nearest a planned position
 (:meth:`core2d.planner.lid_lines.FreeLines.nearest_many`), and each sample's free gap is a
-lid question against the whole recorded contour. Most areas split at their first passes,
-so the passes are planned as they are asked for: a spread pass when it is next, the sweep
+lid question against the whole recorded contour. A look often ends in a split at its first
+or second pass (33 - 75 % of the looks that make passes, noiseless, on four scenes), so the passes are planned as they are asked for: a spread pass when it is next, the sweep
 eight positions at a time. Every sample's gap is the one the whole batch would give
 (:mod:`core2d.planner.lid_lines`), so the passes are those of a plan made at once, and a
 lid split early leaves the later positions unsolved (47 - 87 % fewer lid samples solved on

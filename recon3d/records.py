@@ -179,6 +179,28 @@ class MeshRun:
             if moved:
                 worst = max(abs(p.nudge) for p in moved) / scale
                 out.append(f"axis {fam.label}: moved {len(moved)} of {len(fam.slices)} planes "
-                           f"off mesh vertices (planes {', '.join(str(p.index) for p in moved)}; "
+                           f"off mesh vertices (planes {_index_runs([p.index for p in moved])}; "
                            f"at most {worst:.1e} x diagonal)")
         return out
+
+
+def _index_runs(indices) -> str:
+    """Integer ``indices`` (sorted here) as runs of consecutive values, for a one-line note:
+    a run of three or more as ``first-last``, shorter ones value by value.
+
+    Examples
+    --------
+    >>> _index_runs([0, 1, 2, 3, 5, 7, 8, 9, 11, 12])
+    '0-3, 5, 7-9, 11, 12'
+    >>> _index_runs([])
+    ''
+    """
+    out, values = [], sorted(int(i) for i in indices)
+    start = 0
+    for k in range(1, len(values) + 1):
+        if k < len(values) and values[k] == values[k - 1] + 1:
+            continue
+        run = values[start:k]
+        out += [f"{run[0]}-{run[-1]}"] if len(run) >= 3 else [str(v) for v in run]
+        start = k
+    return ", ".join(out)

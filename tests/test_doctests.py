@@ -41,6 +41,7 @@ MODULES = [
     "recon3d.surface.sweep",
     "recon3d.numerics",
     "recon3d.io.documents",
+    "recon3d.records",
     "recon3d.viz.plot",
     "recon3d.viz.figure2d",
     "recon3d.viz.animate",

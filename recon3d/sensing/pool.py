@@ -36,6 +36,7 @@ import signal
 import sys
 import threading
 import traceback
+from collections import deque
 from collections.abc import Callable
 from typing import Any
 from multiprocessing.connection import wait
@@ -149,7 +150,7 @@ class _Workers:
     """``jobs`` worker processes, each with its pipe and the task it is sensing."""
 
     def __init__(self):
-        self.procs, self.conns, self.busy = [], [], []
+        self.procs, self.conns, self.busy = [], [], []  # busy[w]: w's tasks in flight
 
     def start(self, ctx, jobs: int, init, initargs) -> None:
         """Start ``jobs`` workers (each one stopped by :meth:`stop` however far this got)."""
@@ -159,12 +160,12 @@ class _Workers:
                                daemon=True, name="recon3d-sensing")
             self.procs.append(proc)
             self.conns.append(here)
-            self.busy.append(None)
+            self.busy.append(deque())
             proc.start()
             there.close()
 
     def send(self, w: int, k: int, task) -> None:
-        self.busy[w] = k
+        self.busy[w].append(k)
         try:
             self.conns[w].send(task)
         except OSError:  # the worker died: its sentinel says so next
@@ -196,7 +197,7 @@ def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left:
     proc = workers.procs[w]
     proc.join(_STOP_SECONDS)
     how = describe_exit(proc.exitcode)
-    k = workers.busy[w]
+    k = workers.busy[w][0] if workers.busy[w] else None
     if k is None:
         return WorkerDied(f"a sensing worker died ({how}) between slices; {left} of "
                           f"{len(tasks)} slices unfinished", proc.exitcode)
@@ -208,14 +209,29 @@ def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left:
 
 def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list,
               progress, order: list) -> None:
-    """Hand out ``tasks[k]`` for k in ``order``, one at a time per worker; collect the
-    results into ``out`` (``out[k]``: task order whatever the completion order)."""
+    """Hand out ``tasks[k]`` for k in ``order``; collect the results into ``out``
+    (``out[k]``: task order whatever the completion order).
+
+    Each worker holds two tasks while more tasks are left to hand out than there are
+    workers: it starts its next slice as soon as it has sent one back, instead of waiting
+    for this process to read the slice (about 1 MB pickled on the large mesh) and answer
+    with the next. The last tasks (as many as workers, the cheapest of ``order``) go one at
+    a time to a worker with none, so that no slice waits behind another while a worker is
+    idle."""
     todo = iter(order)
-    left = len(order)
-    for w in range(len(workers.procs)):
-        k = next(todo, None)
-        if k is not None:
+    unsent = left = len(order)
+
+    def fill(w: int, most: int = 2) -> None:
+        nonlocal unsent
+        while unsent and len(workers.busy[w]) < min(most, 2 if unsent > len(workers.procs)
+                                                    else 1):
+            k = next(todo)
+            unsent -= 1
             workers.send(w, k, tasks[k])
+
+    for most in (1, 2):  # one task to every worker first, then the second ones
+        for w in range(len(workers.procs)):
+            fill(w, most)
     while left:
         ready = wait(workers.conns + [p.sentinel for p in workers.procs])
         for w, (conn, proc) in enumerate(zip(workers.conns, workers.procs)):
@@ -231,12 +247,10 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
                 continue
             if reply[0] == "error":
                 raise reply[1] from _RemoteTraceback(f'\n"""\n{reply[2]}"""')
-            k, workers.busy[w] = workers.busy[w], None
+            k = workers.busy[w].popleft()
             out[k] = reply[1]
             left -= 1
-            nxt = next(todo, None)
-            if nxt is not None:
-                workers.send(w, nxt, tasks[nxt])
+            fill(w)
             if progress is not None:
                 progress(out[k])
 

@@ -209,34 +209,30 @@ def _died(workers: _Workers, w: int, tasks: list, settings: SenseSettings, left:
 
 def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list,
               progress, order: list) -> None:
-    """Hand out ``tasks[k]`` for k in ``order``; collect the results into ``out``
-    (``out[k]``: task order whatever the completion order).
+    """Hand out ``tasks[k]`` for k in ``order``, one at a time per worker; collect the
+    results into ``out`` (``out[k]``: task order whatever the completion order).
 
-    Each worker holds two tasks while more tasks are left to hand out than there are
-    workers: it starts its next slice as soon as it has sent one back, instead of waiting
-    for this process to read the slice (about 1 MB pickled on the large mesh) and answer
-    with the next. The last tasks (as many as workers, the cheapest of ``order``) go one at
-    a time to a worker with none, so that no slice waits behind another while a worker is
-    idle."""
+    A worker whose reply is arriving has finished its slice: it is sent its next task
+    before its reply is read (about 1 MB pickled per slice on the large mesh), so that it
+    starts that slice as soon as this process has the reply, not after this process has
+    unpickled it and updated the progress."""
     todo = iter(order)
-    unsent = left = len(order)
+    left = len(order)
 
-    def fill(w: int, most: int = 2) -> None:
-        nonlocal unsent
-        while unsent and len(workers.busy[w]) < min(most, 2 if unsent > len(workers.procs)
-                                                    else 1):
-            k = next(todo)
-            unsent -= 1
+    def give(w: int) -> None:
+        k = next(todo, None)
+        if k is not None:
             workers.send(w, k, tasks[k])
 
-    for most in (1, 2):  # one task to every worker first, then the second ones
-        for w in range(len(workers.procs)):
-            fill(w, most)
+    for w in range(len(workers.procs)):
+        give(w)
     while left:
         ready = wait(workers.conns + [p.sentinel for p in workers.procs])
         for w, (conn, proc) in enumerate(zip(workers.conns, workers.procs)):
             if conn not in ready and proc.sentinel not in ready:
                 continue
+            if conn in ready and len(workers.busy[w]) == 1 and proc.is_alive():
+                give(w)  # its slice is done: the next one first, then its reply
             try:
                 reply = conn.recv() if conn.poll() else None
             except (EOFError, OSError):
@@ -250,7 +246,8 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
             k = workers.busy[w].popleft()
             out[k] = reply[1]
             left -= 1
-            fill(w)
+            if not workers.busy[w]:
+                give(w)
             if progress is not None:
                 progress(out[k])
 

@@ -147,10 +147,11 @@ def _own_contacts(families: list) -> list:
 
 
 class _Workers:
-    """``jobs`` worker processes, each with its pipe and the task it is sensing."""
+    """``jobs`` worker processes, each with its pipe and its tasks in flight: the slice it
+    senses, and its next one from when its reply starts to arrive (:func:`_run_pool`)."""
 
     def __init__(self):
-        self.procs, self.conns, self.busy = [], [], []  # busy[w]: w's tasks in flight
+        self.procs, self.conns, self.busy = [], [], []  # busy[w]: deque of task indices
 
     def start(self, ctx, jobs: int, init, initargs) -> None:
         """Start ``jobs`` workers (each one stopped by :meth:`stop` however far this got)."""
@@ -213,7 +214,7 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
     results into ``out`` (``out[k]``: task order whatever the completion order).
 
     A worker whose reply is arriving has finished its slice: it is sent its next task
-    before its reply is read (about 1 MB pickled per slice on the large mesh), so that it
+    before its reply is read (1.4 - 1.9 MB pickled per slice on the large mesh), so that it
     starts that slice as soon as this process has the reply, not after this process has
     unpickled it and updated the progress."""
     todo = iter(order)

@@ -214,7 +214,7 @@ def _run_pool(workers: _Workers, tasks: list, settings: SenseSettings, out: list
     results into ``out`` (``out[k]``: task order whatever the completion order).
 
     A worker whose reply is arriving has finished its slice: it is sent its next task
-    before its reply is read (1.4 - 1.9 MB pickled per slice on the large mesh), so that it
+    before its reply is read (1.2 MB pickled per slice of the large mesh, median), so that it
     starts that slice as soon as this process has the reply, not after this process has
     unpickled it and updated the progress."""
     todo = iter(order)

@@ -44,7 +44,7 @@ from multiprocessing.connection import wait
 import numpy as np
 import trimesh
 
-from recon3d.io.side import Side, can_fork
+from recon3d.io.side import Side, can_fork, frozen_heap
 from recon3d.records import Family, SliceRun
 from recon3d.score import compile_kernels as compile_scores
 from recon3d.sensing.kernels import cold_kernels, load_numba_target
@@ -329,20 +329,23 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
         args = (np.asarray(mesh.vertices, dtype=np.float64),
                 np.asarray(mesh.faces, dtype=np.int64), settings)
     workers, done, thread = _Workers(), False, None
-    try:
-        workers.start(ctx, jobs, init, args)
-        if beside is not None:
-            thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
-                                      name="recon3d-beside")
-            thread.start()
-        order = [k for k in dispatch_order(families, tasks, settings.eps) if k >= first]
-        _run_pool(workers, tasks, settings, out, progress, order)
-        done = True
-    finally:
-        _STATE = None
-        workers.stop(graceful=done)
-        if thread is not None:
-            thread.join()
+    # the workers inherit this process's objects frozen, and this process's collector skips
+    # them while it waits for the replies (:func:`recon3d.io.side.frozen_heap`)
+    with frozen_heap():
+        try:
+            workers.start(ctx, jobs, init, args)
+            if beside is not None:
+                thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
+                                          name="recon3d-beside")
+                thread.start()
+            order = [k for k in dispatch_order(families, tasks, settings.eps) if k >= first]
+            _run_pool(workers, tasks, settings, out, progress, order)
+            done = True
+        finally:
+            _STATE = None
+            workers.stop(graceful=done)
+            if thread is not None:
+                thread.join()
 
 
 def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,

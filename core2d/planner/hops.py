@@ -8,6 +8,7 @@ stretch between their two contacts is registered as an unknown area (rule ``"hop
 """
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from core2d.planner.areas import register
@@ -23,11 +24,20 @@ def _reach_back(pl, k, step, hop):
     ``step`` (-1 backward, +1 forward), or None: the direction of the
     contour slid along is read over that stretch, not over single
     micro-steps (whose contacts scatter by the contact resolution)."""
-    side = pl[:k] if step < 0 else pl[k + 1:]
-    far = np.flatnonzero(np.hypot(*(side - pl[k]).T) >= hop)
-    if not len(far):
-        return None
-    return int(far[-1]) if step < 0 else k + 1 + int(far[0])
+    m = _walk_to(np.ascontiguousarray(pl, dtype=np.float64), int(k), int(step), float(hop))
+    return None if m < 0 else m
+
+
+@numba.njit(cache=True, nogil=True)
+def _walk_to(pl, k, step, hop):  # pragma: no cover - compiled
+    """:func:`_reach_back`'s walk (-1: none), stopping at the first point found; its
+    distances are numpy's ``np.hypot(*(pl[m] - pl[k]))``, the same to the bit."""
+    m = k + step
+    while 0 <= m < pl.shape[0]:
+        if np.hypot(pl[m, 0] - pl[k, 0], pl[m, 1] - pl[k, 1]) >= hop:
+            return m
+        m += step
+    return -1
 
 
 def _turn(u, w) -> float:

@@ -31,6 +31,7 @@ import numpy as np
 
 from core2d.planner.lid_lines import FreeLine, FreeLines
 from core2d.planner.segments import (cross2, cull_margin, near_segments, point_segment_distances,
+                                     nearest_distance, segments_within,
                                      segment_params)
 
 __all__ = ["KnownContour", "FreeLine"]
@@ -128,6 +129,17 @@ class KnownContour:
         return out[:near_segments(float(p[0]), float(p[1]), r, self._lo, self._hi,
                                    self._piece, out)]
 
+    def _within(self, p, r, first_only: bool = False) -> np.ndarray:
+        """Indices (ascending) of the segments within ``r`` of point ``p`` (2,) float:
+        ``g = self._near(p, r)`` then ``g[point_segment_distances(p, a[g], b[g]) <= r]``,
+        the same to the bit, in one compiled pass; ``first_only``: each piece's first."""
+        if not len(self._lo):
+            return np.zeros(0, dtype=np.int64)
+        out = np.empty(len(self._piece), dtype=np.int64)
+        return out[:segments_within(float(p[0]), float(p[1]), r + cull_margin(r, p, p),
+                                    float(r), self._lo, self._hi, self._piece, self._a,
+                                    self._b, first_only, out)]
+
     def _append(self, pl, i) -> None:
         """Append the segments of piece ``i`` (amortised: buffers grow 2x)."""
         n, k = len(self._a), len(pl) - 1
@@ -175,9 +187,7 @@ class KnownContour:
         for i, pl in enumerate(self.pieces):
             if not self._next[i]:
                 ends.append((pl[-1], self.poses[i][1], i))
-            g = self._near(pl[0], self.join)
-            g = g[self._piece[g] != i]
-            if not (point_segment_distances(pl[0], self._a[g], self._b[g]) <= self.join).any():
+            if not (self._piece[self._within(pl[0], self.join)] != i).any():
                 starts.append((pl[0], self.poses[i][0], i))
         return ends, starts
 
@@ -200,12 +210,9 @@ class KnownContour:
 
     def passing(self, point, r) -> list:
         """[(j, k)]: piece j passes within ``r`` of ``point`` (2,), first at its segment k."""
-        p = np.asarray(point, float)
-        g = self._near(p, r)
-        g = g[point_segment_distances(p, self._a[g], self._b[g]) <= r]
-        pieces = self._piece[g]
-        return [(int(j), int(g[np.argmax(pieces == j)]) - self._first[j])
-                for j in np.unique(pieces)]
+        g = self._within(np.asarray(point, float), float(r), first_only=True)
+        first = self._first
+        return [(j, k - first[j]) for j, k in zip(self._piece[g].tolist(), g.tolist())]
 
     def segments(self) -> tuple[np.ndarray, np.ndarray]:
         """(n, 2), (n, 2) float: start and end of every recorded segment."""
@@ -217,9 +224,8 @@ class KnownContour:
             return float("inf")
         p = np.asarray(point, float)
         # the nearest piece start bounds the answer; only boxes within it count
-        bound = float(np.hypot(*(self._starts - p).T).min())
-        g = self._near(p, bound)
-        return float(point_segment_distances(p, self._a[g], self._b[g]).min())
+        return float(nearest_distance(float(p[0]), float(p[1]), self._starts, self._lo,
+                                      self._hi, self._piece, self._a, self._b))
 
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
@@ -264,9 +270,7 @@ class KnownContour:
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
-        ga, gb = self._near(pa, tol), self._near(pb, tol)
-        near_a = ga[point_segment_distances(pa, self._a[ga], self._b[ga]) <= tol]
-        near_b = gb[point_segment_distances(pb, self._a[gb], self._b[gb]) <= tol]
+        near_a, near_b = self._within(pa, float(tol)), self._within(pb, float(tol))
         if not len(near_a) or not len(near_b):
             return None
         first = np.asarray(self._first)

@@ -11,7 +11,7 @@ import numba
 import numpy as np
 
 __all__ = ["cull_margin", "cross2", "segment_params", "point_segment_distances",
-           "near_segments"]
+           "near_segments", "segments_within", "nearest_distance"]
 
 
 def cull_margin(r, lo, hi) -> float:
@@ -71,20 +71,71 @@ def near_segments(px, py, r, lo, hi, piece, out):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
+def segments_within(px, py, cull, r, lo, hi, piece, a, b, first_only, out):  # pragma: no cover
+    """Segments (ascending, into ``out``; their count returned) within ``r`` of (px, py):
+    :func:`near_segments` at ``cull`` (the pieces' boxes ``lo``, ``hi``), then the
+    distances of :func:`point_segment_distances` ``<= r``, in one pass with the same float64
+    operations (:func:`_segment_distance`). ``first_only``: only each piece's first such
+    segment (the segments of a piece are consecutive, the pieces ascending)."""
+    ok = np.empty(lo.shape[0], dtype=np.bool_)
+    for i in range(lo.shape[0]):
+        ok[i] = (lo[i, 0] - cull <= px and lo[i, 1] - cull <= py and hi[i, 0] + cull >= px
+                 and hi[i, 1] + cull >= py)
+    m, last = 0, -1
+    for j in range(piece.shape[0]):
+        if not ok[piece[j]] or (first_only and piece[j] == last):
+            continue
+        if _segment_distance(px, py, a[j, 0], a[j, 1], b[j, 0], b[j, 1])[1] <= r:
+            out[m] = j
+            m += 1
+            last = piece[j]
+    return m
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def nearest_distance(px, py, starts, lo, hi, piece, a, b):  # pragma: no cover - compiled
+    """Distance from (px, py) to the nearest of the segments ``a`` -> ``b`` (at least one):
+    the nearest piece start (``starts`` (k, 2), each a segment's first point) bounds it, so
+    only the segments of the pieces whose box ``lo``, ``hi`` lies within that bound (plus
+    :func:`cull_margin`) are measured. The float64 operations of the numpy expressions
+    :meth:`core2d.planner.known.KnownContour.distance` used, the same to the bit."""
+    bound = np.inf
+    for i in range(starts.shape[0]):
+        bound = min(bound, np.hypot(starts[i, 0] - px, starts[i, 1] - py))
+    cull = bound + 1e-9 * (bound + max(abs(px), abs(py)))
+    ok = np.empty(lo.shape[0], dtype=np.bool_)
+    for i in range(lo.shape[0]):
+        ok[i] = (lo[i, 0] - cull <= px and lo[i, 1] - cull <= py and hi[i, 0] + cull >= px
+                 and hi[i, 1] + cull >= py)
+    best = np.inf
+    for j in range(piece.shape[0]):
+        if ok[piece[j]]:
+            best = min(best, _segment_distance(px, py, a[j, 0], a[j, 1], b[j, 0], b[j, 1])[1])
+    return best
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _segment_distance(px, py, ax, ay, bx, by):  # pragma: no cover - compiled
+    """The projection parameter of (px, py) on segment a -> b, clamped to [0, 1] (0 for a
+    zero-length segment), and the distance to the projection: the float64 operations of
+    the numpy expressions :func:`_project` replaces, shared by every kernel here."""
+    ex, ey = bx - ax, by - ay
+    s = ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey)
+    s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+    if s != s:  # zero-length segment: its start
+        s = 0.0
+    return s, np.hypot(ax + s * (bx - ax) - px, ay + s * (by - ay) - py)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _project(p, a, b, t, dist):  # pragma: no cover - compiled
     """Projection parameter ``t`` (n,) of p on each segment a -> b, clamped to
     [0, 1] (0 for a zero-length segment), and the distance ``dist`` (n,) to
-    the projection when ``dist`` has n entries; in the float64 operations of
-    the numpy expressions they replace."""
+    the projection when ``dist`` has n entries (:func:`_segment_distance`)."""
     px, py = p[0], p[1]
     with_dist = dist.shape[0] > 0
     for i in range(a.shape[0]):
-        ex, ey = b[i, 0] - a[i, 0], b[i, 1] - a[i, 1]
-        s = ((px - a[i, 0]) * ex + (py - a[i, 1]) * ey) / (ex * ex + ey * ey)
-        s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
-        if s != s:  # zero-length segment: its start
-            s = 0.0
+        s, d = _segment_distance(px, py, a[i, 0], a[i, 1], b[i, 0], b[i, 1])
         t[i] = s
         if with_dist:
-            dist[i] = np.hypot(a[i, 0] + s * (b[i, 0] - a[i, 0]) - px,
-                               a[i, 1] + s * (b[i, 1] - a[i, 1]) - py)
+            dist[i] = d

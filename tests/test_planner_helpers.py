@@ -48,3 +48,57 @@ def test_turns_is_the_division_it_replaces():
         with np.errstate(invalid="ignore", divide="ignore"):
             want = ~((e @ d) / n <= -0.5)
         np.testing.assert_array_equal(_turns(d, e), want)
+
+
+def _random_map(rng, join=0.2):
+    from core2d.planner.known import KnownContour
+
+    known = KnownContour(join=join)
+    scale = 10.0 ** rng.uniform(-2, 3)
+    for _ in range(int(rng.integers(1, 30))):
+        pts = (rng.uniform(-3, 3, 2) + np.cumsum(rng.normal(0, 0.3, (int(rng.integers(2, 12)), 2)),
+                                                 axis=0)) * scale
+        if rng.random() < 0.2:
+            pts[1] = pts[0]  # a zero-length segment
+        known.add(pts)
+    return known, scale
+
+
+def _within_numpy(known, p, r):
+    """The map's segments within ``r`` of ``p`` as plain numpy asks: box culling, then
+    the distances."""
+    from core2d.planner.segments import point_segment_distances
+
+    g = known._near(p, r)
+    return g[point_segment_distances(p, known._a[g], known._b[g]) <= r]
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_maps_compiled_queries_are_numpys(seed):
+    """``passing``, ``_within`` and ``distance`` of the map against the numpy expressions
+    they replace, on random maps (zero-length segments, scales 1e-2 .. 1e3), at random
+    points, at piece starts (distance 0) and at radii equal to a segment's distance."""
+    from core2d.planner.segments import point_segment_distances
+
+    rng = np.random.default_rng(seed)
+    found = set()
+    for _ in range(40):
+        known, scale = _random_map(rng)
+        for _ in range(15):
+            p = rng.uniform(-4, 4, 2) * scale
+            if rng.random() < 0.2:
+                p = known._starts[rng.integers(len(known._starts))].copy()
+            d = point_segment_distances(p, known._a, known._b)
+            r = float(rng.choice(d)) if rng.random() < 0.3 else float(rng.uniform(0, 1.5) * scale)
+            g = _within_numpy(known, p, r)
+            np.testing.assert_array_equal(known._within(p, r), g)
+            pieces = known._piece[g]
+            want = [(int(j), int(g[np.argmax(pieces == j)]) - known._first[j])
+                    for j in np.unique(pieces)]
+            assert known.passing(p, r) == want
+            found.add(len(want) > 1)
+            bound = float(np.hypot(*(known._starts - p).T).min())
+            near = known._near(p, bound)
+            assert known.distance(p) == float(
+                point_segment_distances(p, known._a[near], known._b[near]).min())
+    assert found == {True, False}  # one piece and several passing were both asked

@@ -43,10 +43,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import binary_dilation, binary_opening, label, maximum
+from scipy.ndimage import binary_dilation, binary_opening, label
 from scipy.spatial import cKDTree
 
 from recon3d.surface.closure import sample_pieces
+from recon3d.surface.per_label import label_maximum
 
 __all__ = ["CapSettings", "GapCaps", "unsensed_pieces", "cap_unsensed", "unsensed_side",
            "own_caps"]
@@ -150,7 +151,7 @@ def _decide(comp, n, fa, fb, nodes, pa, pb, reach, deep, settings):
     sensed_a = sa <= settings.share  # nan (no boundary of a there) compares False
     # a's fill: closed by chords where b's side is not, and somewhere in it each slice's
     # boundary lies ``deep`` from the other's (thinner: a wall that moved, under 45 degrees)
-    deep_ab = np.asarray(maximum(np.minimum(fa, -fb), comp, np.arange(1, n + 1))) >= deep
+    deep_ab = label_maximum(np.minimum(fa, -fb), comp, n) >= deep
     # b's empty (``slits``): bounded by chords, a's fill around it not traced either (a traced
     # wall round it: the probe entered) and enclosing it (a's boundary along it is short)
     enclosed = na <= settings.enclosed * nb

@@ -32,7 +32,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import binary_dilation, label, maximum, median
+from scipy.ndimage import binary_dilation, label
+
+from recon3d.surface.per_label import label_maximum, label_median
 
 __all__ = ["GapSteps", "gap_steps"]
 
@@ -77,9 +79,8 @@ def _still(comp, n, edge, f_own, f_next, tol) -> tuple[np.ndarray, np.ndarray]:
     if f_next is None:
         return np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
     lab = np.where(edge, comp, 0)
-    idx = np.arange(1, n + 1)
-    has = np.asarray(maximum(edge, lab, idx), dtype=bool)
-    med = np.asarray(median(np.abs(f_next - f_own), lab, idx), dtype=np.float64)
+    has = label_maximum(edge, lab, n)
+    med = np.asarray(label_median(np.abs(f_next - f_own), lab, n), dtype=np.float64)
     return has, has & (np.nan_to_num(med, nan=np.inf) <= tol)
 
 
@@ -93,8 +94,7 @@ def _one_way(fa, fb, f_before, f_after, tol):
     has_b, still_b = _still(comp, n, mask & binary_dilation(fb > 0), fb, f_after, tol)
     # a step: every wall along it stands still in the neighbouring gap, and one does
     step = (has_a | has_b) & (still_a | ~has_a) & (still_b | ~has_b)
-    idx = np.arange(1, n + 1)
-    wide = np.asarray(maximum(np.minimum(fa, -fb), comp, idx)) > tol
+    wide = label_maximum(np.minimum(fa, -fb), comp, n) > tol
     lut = np.concatenate([[False], step & wide])
     return lut[comp]
 

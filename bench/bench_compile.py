@@ -38,13 +38,13 @@ center, radius = cut.bounding_circle()
 core2d.sense_slice(cut.contact("embree"), (center, radius + eps), eps)
 import numba.core.registry as reg
 from numba.core.dispatcher import Dispatcher
-n = 0
+found = {}  # each kernel once, however many modules import it by name
 for mod in [m for name, m in list(sys.modules.items())
             if name.split(".")[0] in ("core2d", "slicer")]:
     for obj in vars(mod).values():
         if isinstance(obj, Dispatcher):
-            n += len(obj.signatures)
-print("SIGNATURES", n)
+            found[id(obj)] = len(obj.signatures)
+print("SIGNATURES", sum(found.values()))
 """
 
 

@@ -32,7 +32,8 @@ def test_reach_back_is_the_walk(seed):
     answers = set()
     for k in range(len(pl)):
         for step in (-1, 1):
-            for hop in (0.05, 0.3, 2.0):
+            tie = float(np.hypot(*(pl[(k + 7) % len(pl)] - pl[k])))  # a point exactly at hop
+            for hop in (0.05, 0.3, 2.0, tie):
                 got, want = _reach_back(pl, k, step, hop), _reach_back_walk(pl, k, step, hop)
                 assert got == want
                 answers.add(want is None)

@@ -58,10 +58,7 @@ def _c(x) -> np.ndarray:
 def near_segments(px, py, r, lo, hi, piece, out):  # pragma: no cover - compiled
     """Segments (ascending, into ``out``; their count returned) of the pieces
     whose box ``lo``, ``hi`` (k, 2) lies within ``r`` of (px, py)."""
-    ok = np.empty(lo.shape[0], dtype=np.bool_)
-    for i in range(lo.shape[0]):
-        ok[i] = (lo[i, 0] - r <= px and lo[i, 1] - r <= py and hi[i, 0] + r >= px
-                 and hi[i, 1] + r >= py)
+    ok = _boxes_near(px, py, r, lo, hi)
     m = 0
     for j in range(piece.shape[0]):
         if ok[piece[j]]:
@@ -77,10 +74,7 @@ def segments_within(px, py, cull, r, lo, hi, piece, a, b, first_only, out):  # p
     distances of :func:`point_segment_distances` ``<= r``, in one pass with the same float64
     operations (:func:`_segment_distance`). ``first_only``: only each piece's first such
     segment (the segments of a piece are consecutive, the pieces ascending)."""
-    ok = np.empty(lo.shape[0], dtype=np.bool_)
-    for i in range(lo.shape[0]):
-        ok[i] = (lo[i, 0] - cull <= px and lo[i, 1] - cull <= py and hi[i, 0] + cull >= px
-                 and hi[i, 1] + cull >= py)
+    ok = _boxes_near(px, py, cull, lo, hi)
     m, last = 0, -1
     for j in range(piece.shape[0]):
         if not ok[piece[j]] or (first_only and piece[j] == last):
@@ -103,15 +97,23 @@ def nearest_distance(px, py, starts, lo, hi, piece, a, b):  # pragma: no cover -
     for i in range(starts.shape[0]):
         bound = min(bound, np.hypot(starts[i, 0] - px, starts[i, 1] - py))
     cull = bound + 1e-9 * (bound + max(abs(px), abs(py)))
-    ok = np.empty(lo.shape[0], dtype=np.bool_)
-    for i in range(lo.shape[0]):
-        ok[i] = (lo[i, 0] - cull <= px and lo[i, 1] - cull <= py and hi[i, 0] + cull >= px
-                 and hi[i, 1] + cull >= py)
+    ok = _boxes_near(px, py, cull, lo, hi)
     best = np.inf
     for j in range(piece.shape[0]):
         if ok[piece[j]]:
             best = min(best, _segment_distance(px, py, a[j, 0], a[j, 1], b[j, 0], b[j, 1])[1])
     return best
+
+
+@numba.njit(cache=True, nogil=True)
+def _boxes_near(px, py, r, lo, hi):  # pragma: no cover - compiled
+    """(k,) bool: which boxes ``lo``, ``hi`` (k, 2) lie within ``r`` of (px, py) along both
+    axes (the culling every kernel here starts with)."""
+    ok = np.empty(lo.shape[0], dtype=np.bool_)
+    for i in range(lo.shape[0]):
+        ok[i] = (lo[i, 0] - r <= px and lo[i, 1] - r <= py and hi[i, 0] + r >= px
+                 and hi[i, 1] + r >= py)
+    return ok
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from core2d.planar import magnitude
-from core2d.planner.known import _turns
+from core2d.planner.segments import turns
 from core2d.planner.hops import _reach_back
 
 
@@ -40,15 +40,86 @@ def test_reach_back_is_the_walk(seed):
     assert answers == {True, False}  # both found and not found were asked
 
 
+def _turns_numpy(d, e):
+    """The turn test as numpy asks it: cos(d, e) > -0.5, nan (a zero length) turns."""
+    n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return ~((e[:, 0] * d[0] + e[:, 1] * d[1]) / n <= -0.5)
+
+
 def test_turns_is_the_division_it_replaces():
     rng = np.random.default_rng(1)
     e = rng.normal(size=(500, 2))
     e[:20] = 0.0  # zero-length directions turn
+    e[20:40] = [-1.0, 0.0]  # straight back: cos -1
     for d in (rng.normal(size=2), np.zeros(2), np.array([1.0, 0.0])):
-        n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            want = ~((e @ d) / n <= -0.5)
-        np.testing.assert_array_equal(_turns(d, e), want)
+        got = turns(d, e)
+        np.testing.assert_array_equal(got, _turns_numpy(d, e))
+        assert got.all() == (not d.any())  # some directions turn back unless d has no length
+
+
+def _continuations_numpy(pieces, join):
+    """``KnownContour._next`` as the map made it with numpy: for each piece, the pieces
+    passing within ``join`` of its end and turning by less than 120 degrees there, each with
+    its first such segment; pieces added later that pass an earlier end are appended."""
+    from core2d.planner.known import _end_direction
+    from core2d.planner.segments import point_segment_distances
+
+    nxt, dirs = [], []
+    for i, pl in enumerate(pieces):
+        d = _end_direction(pl, join)
+        row = []
+        for j, old in enumerate(pieces[:i]):  # old pieces continuing the new one
+            ok = point_segment_distances(pl[-1], old[:-1], old[1:]) <= join
+            ok &= _turns_numpy(d, old[1:] - old[:-1])
+            if ok.any():
+                row.append((j, int(np.argmax(ok))))
+        for j, old in enumerate(pieces[:i]):  # the new piece continuing old ones
+            ok = point_segment_distances(old[-1], pl[:-1], pl[1:]) <= join
+            ok &= _turns_numpy(dirs[j], pl[1:] - pl[:-1])
+            if ok.any():
+                nxt[j].append((i, int(np.argmax(ok))))
+        nxt.append(row)
+        dirs.append(d)
+    return nxt
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_maps_continuations_are_numpys(seed):
+    """``KnownContour.add``'s compiled continuation search (which pieces pass a piece's end,
+    turning by less than 120 degrees, and at which segment) against the plain numpy
+    search over every piece, on random maps with zero-length segments at scales
+    1e-2 .. 1e3, and on a map whose pieces meet end to start exactly."""
+    from core2d.planner.known import KnownContour
+
+    rng = np.random.default_rng(seed)
+    scale = 10.0 ** rng.uniform(-2, 3)
+    walk = np.cumsum(rng.normal(0, 0.3, (240, 2)), axis=0)  # cut into pieces that chain
+    cuts = np.sort(rng.choice(np.arange(2, 238), 30, replace=False))
+    pieces = []
+    for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, 240]):
+        pl = walk[lo:hi + 1] + rng.normal(0, 0.1, 2)  # a start a little off the last end
+        if rng.random() < 0.2:
+            pl = pl[::-1]  # runs the other way: no continuation
+        if rng.random() < 0.2 and len(pl) > 2:
+            pl[1] = pl[0]  # a zero-length segment
+        pieces.append(np.ascontiguousarray(pl * scale))
+    order = rng.permutation(len(pieces))  # added in any order
+    known = KnownContour(join=0.3 * scale)
+    for i in order:
+        known.add(pieces[i])
+    assert known._next == _continuations_numpy([pieces[i] for i in order], known.join)
+    assert sum(map(len, known._next)) > 10  # pieces were continued
+    square = [np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([[1.0, 0.0], [1.0, 1.0]]),
+              np.array([[1.0, 1.0], [0.0, 1.0]]), np.array([[0.0, 1.0], [0.0, 0.0]]),
+              np.array([[0.0, 0.0], [0.0, 1.0]])]  # the last turns straight back
+    from core2d.planner.known import KnownContour
+
+    k = KnownContour(join=0.1)
+    for pl in square:
+        k.add(pl)
+    assert k._next == _continuations_numpy(square, 0.1)
+    assert k._next[0] == [(1, 0)] and k._next[3] == [(0, 0)]  # not (4, 0): it turns back
 
 
 def _random_map(rng, join=0.2):

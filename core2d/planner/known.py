@@ -30,9 +30,9 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.lid_lines import FreeLine, FreeLines
-from core2d.planner.segments import (cross2, cull_margin, near_segments, point_segment_distances,
-                                     nearest_distance, segments_within,
-                                     segment_params)
+from core2d.planner.segments import (continued_ends, continuing, cross2, cull_margin,
+                                     near_segments, nearest_distance, point_segment_distances,
+                                     segment_params, segments_within)
 
 __all__ = ["KnownContour", "FreeLine"]
 
@@ -72,7 +72,7 @@ class KnownContour:
         self._starts = np.zeros((0, 2))  # first point of every piece
         self._lo = np.zeros((0, 2))  # bounding box of every piece: cheap culling
         self._hi = np.zeros((0, 2))
-        self._end_dirs = []  # _end_direction of every piece (computed once)
+        self._end_dirs = np.zeros((0, 2))  # _end_direction of every piece (once)
         self._buf = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=np.int64))
         self._soft = np.zeros(0, dtype=bool)  # segments that block no line (free_lines)
         self.memo: dict = {}  # name -> (len(pieces), answer): see :meth:`remembered`
@@ -80,7 +80,7 @@ class KnownContour:
     def add(self, polyline, pose_first=None, pose_last=None) -> None:
         """Record a piece, (k, 2) float with k >= 2, material on its right,
         with the postures that touched its first and last points."""
-        pl = np.asarray(polyline, dtype=np.float64).reshape(-1, 2)
+        pl = np.ascontiguousarray(np.asarray(polyline, dtype=np.float64).reshape(-1, 2))
         if len(pl) < 2:
             return
         i = len(self.pieces)
@@ -90,31 +90,31 @@ class KnownContour:
         self.poses.append((pose_first, pose_last))
         self._first.append(len(self._a))
         # pieces that continue the new one, and old pieces the new one continues
+        # (compiled: the distances and the turn test per segment, first per piece)
         nxt = []
-        g = self._near(pl[-1], self.join)
-        if len(g):
-            a, b = self._a[g], self._b[g]
-            ok = point_segment_distances(pl[-1], a, b) <= self.join
-            if ok.any():  # the turn test on the same rows as always (BLAS rounds per call)
-                ok &= _turns(end_dir, b - a)
-            pieces = self._piece[g[ok]]
-            for j in np.unique(pieces):  # its first segment passing the end
-                nxt.append((int(j), int(g[ok][np.argmax(pieces == j)]) - self._first[j]))
+        if len(self._lo):
+            p, join = pl[-1], self.join
+            out = np.empty(len(self._piece), dtype=np.int64)
+            m = continuing(float(p[0]), float(p[1]), join + cull_margin(join, p, p), join,
+                           float(end_dir[0]), float(end_dir[1]), self._lo, self._hi,
+                           self._piece, self._a, self._b, out)
+            nxt = [(int(self._piece[g]), int(g) - self._first[int(self._piece[g])])
+                   for g in out[:m].tolist()]
         self._next.append(nxt)
         # only ends within ``join`` of the new piece's bounding box can pass it
         lo, hi = pl.min(axis=0), pl.max(axis=0)
         reach = self.join + cull_margin(self.join, lo, hi)
-        near = np.flatnonzero(((ends >= lo - reach) & (ends <= hi + reach)).all(axis=1))
-        steps = pl[1:] - pl[:-1]
-        for j in near.tolist():
-            ok = point_segment_distances(ends[j], pl[:-1], pl[1:]) <= self.join
-            if ok.any() and (ok := ok & _turns(self._end_dirs[j], steps)).any():
-                self._next[j].append((i, int(np.argmax(ok))))
+        if len(ends):
+            js = np.empty(len(ends), dtype=np.int64)
+            ks = np.empty(len(ends), dtype=np.int64)
+            m = continued_ends(ends, self._end_dirs, lo, hi, reach, pl, self.join, js, ks)
+            for j, k in zip(js[:m].tolist(), ks[:m].tolist()):
+                self._next[j].append((i, k))
         self._append(pl, i)
         self._soft = np.concatenate([self._soft, np.zeros(len(pl) - 1, dtype=bool)])
         self._ends = np.concatenate([ends, pl[-1:]])
         self._starts = np.concatenate([self._starts, pl[:1]])
-        self._end_dirs.append(end_dir)
+        self._end_dirs = np.concatenate([self._end_dirs, end_dir[None]])
         self._lo = np.concatenate([self._lo, lo[None]])
         self._hi = np.concatenate([self._hi, hi[None]])
 
@@ -163,8 +163,7 @@ class KnownContour:
         out = KnownContour(self.join)
         out.pieces, out.poses, out._first = list(self.pieces), list(self.poses), list(self._first)
         out._next = [list(nxt) for nxt in self._next]  # the same as adding them again
-        out._end_dirs = list(self._end_dirs)
-        for name in ("_ends", "_starts", "_lo", "_hi"):
+        for name in ("_ends", "_starts", "_end_dirs", "_lo", "_hi"):
             setattr(out, name, getattr(self, name).copy())
         n = len(self._a)
         out._buf = tuple(x[:n].copy() for x in (self._a, self._b, self._piece))
@@ -350,10 +349,3 @@ def _end_direction(pl, span) -> np.ndarray:
     far = np.flatnonzero(back >= span)
     return pl[-1] - pl[far[-1] if len(far) else 0]
 
-
-def _turns(d, e) -> np.ndarray:
-    """(n,) bool: direction e turns less than 120 degrees from direction d."""
-    e = np.asarray(e, float).reshape(-1, 2)
-    n = np.hypot(e[:, 0], e[:, 1]) * np.hypot(*d)
-    cos = np.divide(e @ d, n, out=np.full(len(e), np.nan), where=n != 0)
-    return ~(cos <= -0.5)  # nan (a zero-length direction) turns

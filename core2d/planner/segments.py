@@ -11,7 +11,8 @@ import numba
 import numpy as np
 
 __all__ = ["cull_margin", "cross2", "segment_params", "point_segment_distances",
-           "near_segments", "segments_within", "nearest_distance"]
+           "near_segments", "segments_within", "nearest_distance", "turns", "continuing",
+           "continued_ends"]
 
 
 def cull_margin(r, lo, hi) -> float:
@@ -103,6 +104,80 @@ def nearest_distance(px, py, starts, lo, hi, piece, a, b):  # pragma: no cover -
         if ok[piece[j]]:
             best = min(best, _segment_distance(px, py, a[j, 0], a[j, 1], b[j, 0], b[j, 1])[1])
     return best
+
+
+def turns(d, e) -> np.ndarray:
+    """(n,) bool: direction e (n, 2) turns less than 120 degrees from direction d (2,)
+    (a zero-length one turns): cos(d, e) > -0.5, with the float64 operations of
+    :func:`_turns_less`.
+
+    >>> turns([1.0, 0.0], [[1.0, 0.0], [-1.0, 0.1], [-1.0, 2.0], [0.0, 0.0]]).tolist()
+    [True, False, True, True]
+    """
+    e = _c(np.asarray(e, dtype=np.float64).reshape(-1, 2))
+    out = np.empty(len(e), dtype=np.bool_)
+    _turns_all(float(d[0]), float(d[1]), e, out)
+    return out
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _turns_all(dx, dy, e, out):  # pragma: no cover - compiled
+    for i in range(e.shape[0]):
+        out[i] = _turns_less(dx, dy, e[i, 0], e[i, 1])
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _turns_less(dx, dy, ex, ey):  # pragma: no cover - compiled
+    """Does direction (ex, ey) turn less than 120 degrees from (dx, dy)? cos > -0.5 with
+    cos = e.d / (|e| |d|), the norms by ``hypot``; a zero-length direction turns."""
+    n = np.hypot(ex, ey) * np.hypot(dx, dy)
+    if n == 0.0:
+        return True
+    return not ((ex * dx + ey * dy) / n <= -0.5)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def continuing(px, py, cull, r, dx, dy, lo, hi, piece, a, b, out):  # pragma: no cover
+    """The pieces that continue a piece ending at (px, py) in direction (dx, dy): for each
+    piece (ascending), its first segment (into ``out``; their count returned) within ``r``
+    of the end (boxes culled at ``cull`` as in :func:`segments_within`) whose direction
+    b - a turns less than 120 degrees from (dx, dy) (:func:`_turns_less`)."""
+    ok = _boxes_near(px, py, cull, lo, hi)
+    m, last = 0, -1
+    for j in range(piece.shape[0]):
+        if not ok[piece[j]] or piece[j] == last:
+            continue
+        ax, ay, bx, by = a[j, 0], a[j, 1], b[j, 0], b[j, 1]
+        if (_segment_distance(px, py, ax, ay, bx, by)[1] <= r
+                and _turns_less(dx, dy, bx - ax, by - ay)):
+            out[m] = j
+            m += 1
+            last = piece[j]
+    return m
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def continued_ends(ends, dirs, lo, hi, reach, pl, r, out_end, out_seg):  # pragma: no cover
+    """The pieces a new polyline ``pl`` (k, 2) continues: each end ``ends[j]`` (ascending)
+    inside the polyline's box ``lo``, ``hi`` (2,) grown by ``reach``, with the first
+    segment of ``pl`` within ``r`` of it whose step turns less than 120 degrees from that
+    piece's end direction ``dirs[j]``: j into ``out_end``, the segment into ``out_seg``;
+    their count returned."""
+    m = 0
+    for j in range(ends.shape[0]):
+        px, py = ends[j, 0], ends[j, 1]
+        if not (px >= lo[0] - reach and py >= lo[1] - reach and px <= hi[0] + reach
+                and py <= hi[1] + reach):
+            continue
+        for k in range(pl.shape[0] - 1):
+            ax, ay, bx, by = pl[k, 0], pl[k, 1], pl[k + 1, 0], pl[k + 1, 1]
+            if (_segment_distance(px, py, ax, ay, bx, by)[1] <= r
+                    and _turns_less(dirs[j, 0], dirs[j, 1], bx - ax, by - ay)):
+                out_end[m] = j
+                out_seg[m] = k
+                m += 1
+                break
+    return m
 
 
 @numba.njit(cache=True, nogil=True)

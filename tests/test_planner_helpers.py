@@ -113,8 +113,6 @@ def test_the_maps_continuations_are_numpys(seed):
     square = [np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([[1.0, 0.0], [1.0, 1.0]]),
               np.array([[1.0, 1.0], [0.0, 1.0]]), np.array([[0.0, 1.0], [0.0, 0.0]]),
               np.array([[0.0, 0.0], [0.0, 1.0]])]  # the last turns straight back
-    from core2d.planner.known import KnownContour
-
     k = KnownContour(join=0.1)
     for pl in square:
         k.add(pl)

@@ -8,7 +8,9 @@ and :func:`core2d.truth.metrics.sensor_metrics` (eps / 2 + 2 S x eps). One
 row per group and level: slices, reachable coverage and precision at both
 tolerances (length weighted, and the worst slice at the sensor's), coverage at the
 sensor's tolerance over the part eps resolves (:mod:`core2d.truth.resolvable`: openings
-narrower than eps left out, which §3.1 closes by W2 by design), W3 lids and unsound ones at
+narrower than eps left out, which §3.1 closes by W2 by design) and over the part eps +
+jitter resolves (the sensor's stated W2 distance: openings that read narrower are W2 by the
+planner's rule), W3 lids and unsound ones at
 both tolerances, motions and their ratio to the noiseless run (total, and the worst slice),
 budget hits. Then, per case (a scene or mesh over its slices, an outline), which meet the
 issue's targets at each level: coverage within eps/2 + 2 sigma (over the reachable contour
@@ -34,13 +36,14 @@ absent). Nothing is asserted: it measures.
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
+
+from bench.sensor_report import coverage_target, markdown, per_case, summarise, verdicts
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared"
@@ -56,12 +59,15 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]
     ``seed + 1000 j`` (j < ``seeds``; j = 0 is the case's own seed), each with its
     ``sensor_seed`` and ``ratio`` (motions over the noiseless run's)."""
     from core2d import SensorModel, sense_slice
+    from core2d.resolution import Resolution
     from core2d.truth.metrics import sensor_metrics, slice_metrics
     from core2d.truth.reachability import reachable_samples
     from core2d.truth.resolvable import resolvable
 
     samples = reachable_samples(loops, eps / 4)
     resolved = resolvable(loops, samples[0].points, eps)
+    weights, reach = samples[0].lengths, samples[1]
+    bands = {}  # the sensor's W2 distance -> the contour a disc that wide resolves
     rows = []
     runs = [(0.0, 0.0, 0)] + [(n, t, j) for n, t in levels for j in range(seeds)]
     for noise, taxel, j in runs:
@@ -70,8 +76,19 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]
         m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples, resolved=resolved)
         m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
                                 resolved=resolved))
+        w2 = Resolution.of(eps, noise=sensor.noise, taxel=sensor.taxel).w2_dist
+        if w2 == eps:  # no jitter: the part eps resolves
+            band, covered = resolved, m["covered_resolvable_length_sensor"]
+        else:
+            if w2 not in bands:
+                bands[w2] = resolvable(loops, samples[0].points, w2)
+            band = bands[w2]
+            covered = sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4,
+                                     samples=samples,
+                                     resolved=band)["covered_resolvable_length_sensor"]
         rows.append({"noise": noise, "taxel": taxel, "sensor_seed": seed + 1000 * j,
-                     "repeat": j, **{k: m[k] for k in (
+                     "repeat": j, "band_length": float(weights[reach & band].sum()),
+                     "covered_band_length_sensor": covered, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
             "w2_credit_length_sensor",
             "coverage_resolvable_sensor", "covered_resolvable_length_sensor",
@@ -175,133 +192,6 @@ def _run(job):
     for r in rows:
         r.update(group=group, name=name, wall=time.perf_counter() - t0)
     return rows
-
-
-def summarise(rows) -> list[dict]:
-    """One summary per (group, noise, taxel)."""
-    keyed = {}
-    for r in rows:
-        if "error" not in r:
-            keyed.setdefault((r["group"], r["noise"], r["taxel"]), []).append(r)
-    out = []
-    for (g, noise, taxel), rs in sorted(keyed.items()):
-        def total(num, den):
-            d = sum(r[den] for r in rs)
-            return sum(r.get(num, math.nan) for r in rs) / d if d > 0 else 1.0
-        base = sum(r["motions"] / r["ratio"] for r in rs)
-        out.append({
-            "group": g, "noise": noise, "taxel": taxel, "slices": len(rs),
-            "coverage": total("covered_length", "reachable_length"),
-            "coverage_sensor": total("covered_length_sensor", "reachable_length"),
-            "cov_sensor_min": min(r["coverage_sensor"] for r in rs),
-            "w2_credit_sensor": total("w2_credit_length_sensor", "reachable_length"),
-            "resolved_sensor": total("covered_resolvable_length_sensor", "resolvable_length"),
-            "resolved_sensor_min": min(r["coverage_resolvable_sensor"] for r in rs),
-            "precision": total("precise_length", "detected_length"),
-            "precision_sensor": total("precise_length_sensor", "detected_length"),
-            "prec_sensor_min": min(r["precision_sensor"] for r in rs),
-            "lids": sum(r["w3_count"] for r in rs),
-            "unsound": sum(r["w3_unsound_count"] for r in rs),
-            "unsound_sensor": sum(r["w3_unsound_count_sensor"] for r in rs),
-            "motions": sum(r["motions"] for r in rs),
-            "ratio": sum(r["motions"] for r in rs) / max(base, 1),
-            "ratio_max": max(r["ratio"] for r in rs),
-            "budget": sum(bool(r["budget_hit"]) for r in rs),
-        })
-    return out
-
-
-def markdown(summary) -> str:
-    """The summary as a markdown table."""
-    rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
-            "(min) | of it behind W2 chords | over the part eps resolves (min) | precision eps/2 "
-            "| precision eps/2+2σ (min) | W3 lids | unsound eps/2 | unsound eps/2+2σ | motions "
-            "| × noiseless (max) | budget hits |", "|" + "---|" * 16]
-    for s in summary:
-        rows.append(
-            f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
-            f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
-            f"{_credit(s)} | "
-            f"{s['resolved_sensor']:.4f} ({s['resolved_sensor_min']:.4f}) | "
-            f"{s['precision']:.4f} | {s['precision_sensor']:.4f} ({s['prec_sensor_min']:.4f}) | "
-            f"{s['lids']} | {s['unsound']} | {s['unsound_sensor']} | {s['motions']} | {s['ratio']:.2f} "
-            f"({s['ratio_max']:.2f}) | {s['budget']} |")
-    return "\n".join(rows)
-
-
-def _credit(s: dict) -> str:
-    """The share of the reachable contour counted covered only because it lies behind a
-    W2 chord (never within eps/2 + 2 sigma of W1 or W2: the walls of a slot the chord
-    closed); '-' for rows of a CSV written before the column existed."""
-    v = s.get("w2_credit_sensor")
-    return "-" if v is None or v != v else f"{v:.4f}"
-
-
-def per_case(rows) -> list[dict]:
-    """One line per (group, case, noise, taxel): a scene or mesh over its slices (``name``
-    before ``:z``), an outline alone; coverage and precision length weighted, motions over
-    the noiseless run's."""
-    keyed = {}
-    for r in rows:
-        if "error" not in r:
-            name = r["name"].split(":")[0] + (f" (sensor seed +{1000 * r['repeat']})"
-                                               if r.get("repeat") else "")
-            keyed.setdefault((r["group"], name, r["noise"], r["taxel"]), []).append(r)
-    out = []
-    for (g, name, noise, taxel), rs in keyed.items():
-        def total(num, den):
-            d = sum(r[den] for r in rs)
-            return sum(r.get(num, math.nan) for r in rs) / d if d > 0 else 1.0
-        base = sum(r["motions"] / r["ratio"] for r in rs)
-        out.append({"group": g, "case": name, "noise": noise, "taxel": taxel,
-                    "coverage_sensor": total("covered_length_sensor", "reachable_length"),
-                    "w2_credit_sensor": total("w2_credit_length_sensor", "reachable_length"),
-                    "resolved_sensor": total("covered_resolvable_length_sensor",
-                                             "resolvable_length"),
-                    "precision_sensor": total("precise_length_sensor", "detected_length"),
-                    "ratio": sum(r["motions"] for r in rs) / max(base, 1),
-                    "budget": sum(bool(r["budget_hit"]) for r in rs)})
-    return out
-
-
-def verdicts(rows) -> str:
-    """Per sensor level with a coverage target: how many cases meet each target, and the
-    cases that miss one (their figures)."""
-    cases_ = per_case(rows)
-    unit = "case runs (cases x sensor seeds)" if any(r.get("repeat") for r in rows) else "cases"
-    lines = []
-    for noise, taxel in sorted({(c["noise"], c["taxel"]) for c in cases_}):
-        target = coverage_target(noise, taxel)
-        if target is None:
-            continue
-        cs = [c for c in cases_ if (c["noise"], c["taxel"]) == (noise, taxel)]
-        checks = {"coverage": lambda c: c["coverage_sensor"] >= target,
-                  "coverage over the part eps resolves": lambda c: c["resolved_sensor"] >= target,
-                  "precision >= 0.98": lambda c: c["precision_sensor"] >= 0.98,
-                  "motions <= 2 x noiseless": lambda c: c["ratio"] <= 2.0,
-                  "no budget hit": lambda c: c["budget"] == 0}
-        lines.append(f"sigma {noise:g} eps, taxel {taxel:g} eps (coverage target {target}), "
-                     f"{len(cs)} {unit}: " + "; ".join(
-                         f"{k} {sum(f(c) for c in cs)}" for k, f in checks.items()))
-        for c in sorted(cs, key=lambda c: (c["group"], c["case"])):
-            missed = [k for k, f in checks.items() if not f(c)]
-            if missed:
-                lines.append(f"  {c['group']} {c['case']}: coverage {c['coverage_sensor']:.4f} "
-                             f"(behind W2 chords {_credit(c)}), "
-                             f"over the part eps resolves {c['resolved_sensor']:.4f}, precision "
-                             f"{c['precision_sensor']:.4f}, motions x{c['ratio']:.2f}, budget "
-                             f"hits {c['budget']} (misses: {', '.join(missed)})")
-    return "\n".join(lines)
-
-
-def coverage_target(noise: float, taxel: float) -> float | None:
-    """The reachable coverage (within eps/2 + 2 sigma) a sensor level is to reach: 0.99 at
-    sigma 0.1 eps, 0.98 at sigma 0.3 eps with taxels 0.25 eps; None where none is set.
-
-    >>> coverage_target(0.1, 0), coverage_target(0.3, 0.25), coverage_target(1, 0)
-    (0.99, 0.98, None)
-    """
-    return {(0.1, 0.0): 0.99, (0.3, 0.25): 0.98}.get((float(noise), float(taxel)))
 
 
 def write_csv(path: Path, rows) -> None:

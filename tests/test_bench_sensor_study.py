@@ -66,3 +66,53 @@ def test_first_outline_picks_the_outline_seeds(first, names):
     got = [name for _, name, _, a in cases(args) if a[0] == "star"]
     assert got == names
     assert [a[1] for _, name, _, a in cases(args) if name in names] == [first, first + 1]
+
+
+def _band(row, band):
+    """``row`` with the band columns: coverage ``band`` over 80 of its 100 length units."""
+    return {**row, "band_length": 80.0, "covered_band_length_sensor": 80.0 * band}
+
+
+def test_the_band_column_is_pooled_printed_and_judged():
+    """Coverage over the part eps + jitter resolves: pooled by length, printed beside the
+    part eps resolves, counted in the verdicts but judging no case (a case that meets every
+    target and not this one is not listed); rows of an older CSV print '-'."""
+    rows = [_band(_row("comb-0", 0.90, 0.30), 0.95), _band(_row("star-0", 0.99, 0.02), 1.0)]
+    (s,) = summarise(rows)
+    assert math.isclose(s["band_sensor"], 0.975) and math.isclose(s["band_sensor_min"], 0.95)
+    table = markdown([s])
+    assert "over the part eps + jitter resolves (min)" in table.splitlines()[0]
+    assert "| 0.9450 (0.9000) | 0.9750 (0.9500) |" in table
+    text = verdicts(rows)
+    assert "coverage over the part eps + jitter resolves (counted only) 1" in text
+    assert "over the part eps + jitter resolves 0.9500" in text
+    (old,) = summarise([_row("comb-0", 0.99, None)])
+    assert "| 0.9900 (0.9900) | - (-) |" in markdown([old])
+    assert "misses" not in verdicts([_row("comb-0", 0.99, None)])
+    assert "misses" not in verdicts([_band(_row("star-1", 0.99, 0.0), 0.90)])
+
+
+def test_the_band_leaves_out_a_slot_the_sensor_reads_as_w2():
+    """A slot 1.5 eps wide and 6 eps deep: eps resolves its walls, a disc of the coarse
+    sensor's W2 distance (eps + jitter = 2.52 eps at sigma 0.3 eps, taxels 0.25 eps) does
+    not enter it. The band leaves out the slot's walls but the ends a disc that wide touches
+    (each wall 6 eps long: between 2 x (6 - 2.52 / 2 - 1) and 2 x 6 + 1.5 fewer length units),
+    and is the part eps resolves for the noiseless run."""
+    import numpy as np
+
+    from bench.sensor_study import _score
+    from core2d.resolution import Resolution
+    from slicer import ExactContact
+
+    w, d = 1.5, 6.0
+    loop = np.array([[0, 0], [20, 0], [20, 10], [10 + w / 2, 10], [10 + w / 2, 10 - d],
+                     [10 - w / 2, 10 - d], [10 - w / 2, 10], [0, 10]], dtype=float)
+    assert Resolution.of(1.0, noise=0.3, taxel=0.25).w2_dist > w > 1.0
+    rows = _score([loop], ExactContact([loop]), (np.array([10.0, 5.0]), 13.0), 1.0,
+                  ((0.3, 0.25),), 0, 5000, 1)
+    quiet, noisy = rows
+    assert quiet["band_length"] == quiet["resolvable_length"]
+    assert quiet["covered_band_length_sensor"] == quiet["covered_resolvable_length_sensor"]
+    left_out = noisy["resolvable_length"] - noisy["band_length"]
+    assert 2 * (d - 2.52 / 2 - 1.0) <= left_out <= 2 * d + w
+    assert 0 <= noisy["covered_band_length_sensor"] <= noisy["band_length"]

@@ -146,6 +146,25 @@ def _own_contacts(families: list) -> list:
     return [[dataclasses.replace(s) for s in fam] for fam in families]
 
 
+def _built(families: list, tasks: list, backend: str) -> list:
+    """:func:`_own_contacts` with the contact model of every task's slice built here, before
+    the workers are forked: they inherit the models and only cast rays.
+
+    Building an Embree scene runs TBB tasks. TBB's worker threads of this process (any
+    Embree scene built here before, e.g. by an earlier run in the same process) may hold
+    one of TBB's locks at the instant of a fork, and a child that then builds a scene waits
+    on that lock forever: a sensing worker of the test suite hung so in
+    ``tbb::detail::r1::private_server::wake_some``, under ``rtcCommitScene``. Built here,
+    nothing in a worker calls TBB. The models go with the pool (fresh caches, as in
+    :func:`_own_contacts`). ``tasks``: (family, index, eps) each."""
+    own = _own_contacts(families)
+    for task in tasks:
+        cut = own[task[0]][task[1]]
+        if not cut.is_empty:
+            getattr(cut.contact(backend), "ray_kernel", None)  # Embree: its direct scene too
+    return own
+
+
 class _Workers:
     """``jobs`` worker processes, each with its pipe and its tasks in flight: the slice it
     senses, and its next one from when its reply starts to arrive (:func:`_run_pool`)."""
@@ -323,7 +342,8 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
     global _STATE
     if fork:
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
-        _STATE = WorkerState(settings, families)  # inherited by the forked workers
+        # inherited by the forked workers, every contact model built (_built)
+        _STATE = WorkerState(settings, _built(families, tasks[first:], settings.backend))
     else:  # pragma: no cover - no fork on this platform
         ctx, init = multiprocessing.get_context("spawn"), _rebuild
         args = (np.asarray(mesh.vertices, dtype=np.float64),

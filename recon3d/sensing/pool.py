@@ -24,6 +24,9 @@ The workers live no longer than the call:
   them and waits for them;
 * a worker that dies (killed, segfault) ends the call with
   :class:`WorkerDied`, naming the slice it was sensing; no hang.
+
+Forked workers inherit every slice's contact model built (:func:`_built`): building an
+Embree scene runs TBB tasks, and TBB is not safe across a fork.
 """
 from __future__ import annotations
 

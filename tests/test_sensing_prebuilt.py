@@ -1,5 +1,5 @@
 """Forked sensing workers inherit every slice's contact model built
-(:func:`recon3d.sensing.pool._built`): nothing in a worker builds an Embree scene, whose
+(:func:`recon3d.sensing.worker.built_contacts`): nothing in a worker builds an Embree scene, whose
 TBB tasks can wait forever on a lock that a fork left held."""
 import meshes
 from recon3d.sensing import pool, sense_mesh

@@ -25,14 +25,14 @@ The workers live no longer than the call:
 * a worker that dies (killed, segfault) ends the call with
   :class:`WorkerDied`, naming the slice it was sensing; no hang.
 
-Forked workers inherit every slice's contact model built (:func:`_built`): building an
+Forked workers inherit every slice's contact model built
+(:func:`~recon3d.sensing.worker.built_contacts`): building an
 Embree scene runs TBB tasks, and TBB is not safe across a fork.
 """
 from __future__ import annotations
 
 import ctypes
 import ctypes.util
-import dataclasses
 import multiprocessing
 import os
 import signal
@@ -52,7 +52,7 @@ from recon3d.records import Family, SliceRun
 from recon3d.score import compile_kernels as compile_scores
 from recon3d.sensing.kernels import cold_kernels, load_numba_target
 from recon3d.sensing.order import dispatch_order
-from recon3d.sensing.worker import SenseSettings, WorkerState
+from recon3d.sensing.worker import SenseSettings, WorkerState, built_contacts, own_contacts
 
 __all__ = ["sense_all", "WorkerDied", "describe_exit"]
 
@@ -141,31 +141,6 @@ def _worker(conn, parent: int, init, initargs) -> None:
 
 def _rebuild(vertices, faces, settings) -> WorkerState:
     return WorkerState.rebuild(vertices, faces, settings)
-
-
-def _own_contacts(families: list) -> list:
-    """The same slices (geometry shared, not cut again) with empty contact caches, so
-    the contact models built while sensing go when sensing ends, as in a worker."""
-    return [[dataclasses.replace(s) for s in fam] for fam in families]
-
-
-def _built(families: list, tasks: list, backend: str) -> list:
-    """:func:`_own_contacts` with the contact model of every task's slice built here, before
-    the workers are forked: they inherit the models and only cast rays.
-
-    Building an Embree scene runs TBB tasks. TBB's worker threads of this process (any
-    Embree scene built here before, e.g. by an earlier run in the same process) may hold
-    one of TBB's locks at the instant of a fork, and a child that then builds a scene waits
-    on that lock forever: a sensing worker of the test suite hung so in
-    ``tbb::detail::r1::private_server::wake_some``, under ``rtcCommitScene``. Built here,
-    nothing in a worker calls TBB. The models go with the pool (fresh caches, as in
-    :func:`_own_contacts`). ``tasks``: (family, index, eps) each."""
-    own = _own_contacts(families)
-    for task in tasks:
-        cut = own[task[0]][task[1]]
-        if not cut.is_empty:
-            getattr(cut.contact(backend), "ray_kernel", None)  # Embree: its direct scene too
-    return own
 
 
 class _Workers:
@@ -345,8 +320,9 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
     global _STATE
     if fork:
         ctx, init, args = multiprocessing.get_context("fork"), None, ()
-        # inherited by the forked workers, every contact model built (_built)
-        _STATE = WorkerState(settings, _built(families, tasks[first:], settings.backend))
+        # inherited by the forked workers, every contact model built (built_contacts)
+        _STATE = WorkerState(settings, built_contacts(families, tasks[first:],
+                                                     settings.backend))
     else:  # pragma: no cover - no fork on this platform
         ctx, init = multiprocessing.get_context("spawn"), _rebuild
         args = (np.asarray(mesh.vertices, dtype=np.float64),
@@ -374,7 +350,7 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
 def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,
                 progress, start: int = 0) -> None:
     """Sense ``tasks[start:]`` in this process into ``out`` (contact caches of its own)."""
-    state = WorkerState(settings, _own_contacts(families))
+    state = WorkerState(settings, own_contacts(families))
     for k in range(start, len(tasks)):
         out[k] = state.sense(*tasks[k])
         if progress is not None:

@@ -33,7 +33,8 @@ from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
 from recon3d.score.evaluate import on_holes
 
-__all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics"]
+__all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics",
+           "own_contacts", "built_contacts"]
 
 
 @dataclass(frozen=True)
@@ -191,3 +192,28 @@ class WorkerState:
         truth = ContourTruth(samp.points, samp.lengths, reach, covered,
                              on_holes(cut, samp.points), resolved)
         return SliceRun(None, family, index, result, metrics, workspace, truth)
+
+
+def own_contacts(families: list) -> list:
+    """The same slices (geometry shared, not cut again) with empty contact caches, so
+    the contact models built while sensing go when sensing ends, as in a worker."""
+    return [[replace(s) for s in fam] for fam in families]
+
+
+def built_contacts(families: list, tasks: list, backend: str) -> list:
+    """:func:`own_contacts` with the contact model of every task's slice built here, before
+    the workers are forked: they inherit the models and only cast rays.
+
+    Building an Embree scene runs TBB tasks. TBB's worker threads of this process (any
+    Embree scene built here before, e.g. by an earlier run in the same process) may hold
+    one of TBB's locks at the instant of a fork, and a child that then builds a scene waits
+    on that lock forever: a sensing worker of the test suite hung so in
+    ``tbb::detail::r1::private_server::wake_some``, under ``rtcCommitScene``. Built here,
+    nothing in a worker calls TBB. The models go with the pool (fresh caches, as in
+    :func:`own_contacts`). ``tasks``: (family, index, eps) each."""
+    own = own_contacts(families)
+    for task in tasks:
+        cut = own[task[0]][task[1]]
+        if not cut.is_empty:
+            getattr(cut.contact(backend), "ray_kernel", None)  # Embree: its direct scene too
+    return own

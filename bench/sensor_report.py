@@ -36,7 +36,8 @@ def summarise(rows) -> list[dict]:
             "resolved_sensor": total("covered_resolvable_length_sensor", "resolvable_length"),
             "resolved_sensor_min": min(r["coverage_resolvable_sensor"] for r in rs),
             "band_sensor": _band(rs),
-            "band_sensor_min": min((_band([r]) for r in rs), default=math.nan),
+            "band_sensor_min": min((b for b in map(_band, ([r] for r in rs)) if _known(b)),
+                                   default=math.nan),
             "precision": total("precise_length", "detected_length"),
             "precision_sensor": total("precise_length_sensor", "detected_length"),
             "prec_sensor_min": min(r["precision_sensor"] for r in rs),
@@ -98,8 +99,7 @@ def _credit(s: dict) -> str:
     """The share of the reachable contour counted covered only because it lies behind a
     W2 chord (never within eps/2 + 2 sigma of W1 or W2: the walls of a slot the chord
     closed); '-' for rows of a CSV written before the column existed."""
-    v = s.get("w2_credit_sensor")
-    return "-" if v is None or v != v else f"{v:.4f}"
+    return _figure(s.get("w2_credit_sensor"))
 
 
 def per_case(rows) -> list[dict]:

@@ -86,6 +86,8 @@ def test_the_band_column_is_pooled_printed_and_judged():
     text = verdicts(rows)
     assert "coverage over the part eps + jitter resolves (counted only) 1" in text
     assert "over the part eps + jitter resolves 0.9500" in text
+    (mixed,) = summarise([_row("comb-0", 0.90, None), _band(_row("star-0", 0.95, None), 0.97)])
+    assert mixed["band_sensor"] == mixed["band_sensor_min"] == 0.97  # an older row left out
     (old,) = summarise([_row("comb-0", 0.99, None)])
     assert "| 0.9900 (0.9900) | - (-) |" in markdown([old])
     assert "misses" not in verdicts([_row("comb-0", 0.99, None)])

@@ -84,11 +84,13 @@ class PassPlan:
         self._rest = chain.from_iterable(sources)
         self._first: deque = deque()
         self.count = 0
+        self.exhausted = False
 
     def next(self):
-        """The next pass, or None when there is none left."""
+        """The next pass, or None when there is none left (:attr:`exhausted` from then on)."""
         item = self._first.popleft() if self._first else next(self._rest, None)
         self.count += item is not None
+        self.exhausted = item is None
         return item
 
     def push(self, item) -> None:

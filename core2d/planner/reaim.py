@@ -116,6 +116,38 @@ class Aim:
         if shift is None:  # a planned pass: a new series on its line
             self.base, self.landings, shift = (np.asarray(point, float), d), [], 0.0
         self.landings.append((float(shift), u))
+        again = self.toward(0.5)
+        if again is not None:
+            self.spent += 1
+        return again
+
+    def on_line(self, contact) -> float | None:
+        """Where ``contact`` lies along A_i -> B_i (0 at A_i, 1 at B_i) if it lies on the
+        lid's line within the jitter (the wall the lid lies along), else None."""
+        ab = self.b - self.a
+        n2 = float(ab @ ab)
+        c = np.asarray(contact, float)
+        if n2 == 0.0 or abs(float(cross(ab, c - self.a))) / np.sqrt(n2) > self.res.jitter:
+            return None
+        return float((c - self.a) @ ab) / n2
+
+    def record(self, shift: float, contact) -> None:
+        """Keep the landing of a pass of the current series shifted by ``shift``
+        (:meth:`toward`), when it landed on the lid's line."""
+        u = self.on_line(contact)
+        if self.base is not None and u is not None:
+            self.landings.append((float(shift), u))
+
+    def toward(self, target: float):
+        """The current series' line shifted to land at ``target`` along A_i -> B_i:
+        ``(point, direction, shift)``, or None (no series yet, a flat secant, or a
+        shift farther than a reading's reach). The slope of landing against shift is
+        the lid's direction for the wall's while the series has one landing, then the
+        secant through its last two."""
+        if self.base is None or not self.landings:
+            return None
+        ab = self.b - self.a
+        length = np.sqrt(float(ab @ ab))  # as landed() measured it
         normal = np.array([-self.base[1][1], self.base[1][0]])
         if len(self.landings) == 1:  # the lid's direction for the wall's
             sine = float(cross(self.base[1], ab / length))
@@ -125,8 +157,7 @@ class Aim:
             slope = (u1 - u0) / (s1 - s0) if s1 != s0 else 0.0
         if slope == 0.0 or not np.isfinite(slope):
             return None
-        s_new = self.landings[-1][0] + (0.5 - self.landings[-1][1]) / slope
+        s_new = self.landings[-1][0] + (target - self.landings[-1][1]) / slope
         if abs(s_new) > self.res.tip_zone:  # farther than a reading's reach: not this wall
             return None
-        self.spent += 1
         return self.base[0] + s_new * normal, self.base[1], float(s_new)

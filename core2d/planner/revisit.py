@@ -75,8 +75,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
      across a reachable slot 1.5 eps wide (``comb`` outline seed 1, sigma
      0.1 eps, sensor seed 1001: every pass ran within 6 degrees of the lid);
    * with a noisy sensor, the passes' contacts that were no new contact (on recorded
-     contour, at an ancestor's split, near an end) but touched C_A^B at the lid sample
-     it finely enough -- no two neighbours along the lid, A_i and B_i included, as far
+     contour, at an ancestor's split, near an end) but touched C_A^B at the lid -- the
+     planned passes', then those aimed into the gaps between their touches
+     (:class:`~core2d.planner.touched.Fill`) -- sample it finely enough -- no two neighbours along the lid, A_i and B_i included, as far
      apart as eps + jitter, the middle touched -> **W2** along their block means
      (:mod:`~core2d.planner.touched`): what the refused splits would have made;
    * otherwise -> ``unknown``, reported with the lid in the result -- with a noisy sensor
@@ -98,11 +99,11 @@ from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import covered
 from core2d.planner.openings import soften_passed
-from core2d.planner.pass_plan import PassPlan, spread, sweep
+from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
-from core2d.planner.touched import Touches, applies
+from core2d.planner.touched import Fill, Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
 from core2d.planner.thin_walls import behind_recorded
 from core2d.planner.tracing import reread_pass
@@ -262,8 +263,12 @@ def revisit_one(run: Exploration, area):
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
     touches = (Touches(run.res, aim.a, aim.b, lid_end_radius(run.res, area.dist))
                if lines and applies(run.res) else None)  # a noisy sensor's W2 by touch
-    while (planned := plan.next()) is not None:
+    fill = (Fill(touches, aim, min(MAX_SWEEP, 2 * int(np.ceil(area.dist / run.res.w2_dist))))
+            if touches is not None else None)  # then passes into the touches' gaps
+    while (planned := plan.next()) is not None or (
+            fill is not None and not escaped and (planned := fill.next()) is not None):
         point, direction, shift = planned
+        filling = plan.exhausted
         if not run.budget():
             return run.deferred.append(area)  # the budget ran out: still unknown
         if blockers.stops(point, direction):  # would meet contour a pass stopped at
@@ -288,6 +293,10 @@ def revisit_one(run: Exploration, area):
                       and steep_enough(run.res, area.a, area.b, direction))
         if c is not None and not _near_end(run, area, c):
             blockers.add(area.a, area.b, pose_c.joint, c)
+        if filling:  # a pass into a gap: its landing steers the next
+            if c is not None:
+                aim.record(shift, c)
+            continue
         again = None if c is None else aim.landed(point, direction, c, shift)
         if again is not None:  # a grazing pass landed off the middle: its line shifted
             plan.push(again)

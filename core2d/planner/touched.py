@@ -26,8 +26,8 @@ segment per pair of neighbours. The chain is not added to the robot's map (an un
 lid was not either): laid a few sigma inside a slit 1.26 eps wide it narrowed the slit
 for the lid question of the areas after it (``trimesh_octagonal_pocket`` z1 at sigma
 0.1 eps: coverage within eps/2 + 2 sigma 0.988 -> 0.951 with the chain on the map,
-0.991 without). The rule only reads the passes the revisit makes anyway: the motions
-are those of the run without it.
+0.991 without). The rule reads the passes the revisit makes anyway, and then those of
+:class:`Fill`: passes aimed into the gaps the touches leave.
 
 A lid whose touches leave gaps as wide as the W2 distance (the passes land where a grazing
 line meets the wall, and some stretches get none) stays ``unknown`` and is reported as any
@@ -51,7 +51,7 @@ import numpy as np
 from core2d.planner.grazing import crosses_lid
 from core2d.resolution import Resolution
 
-__all__ = ["Touches", "applies"]
+__all__ = ["Touches", "Fill", "applies"]
 
 
 def applies(res: Resolution) -> bool:
@@ -127,6 +127,15 @@ class Touches:
     def _gaps(self) -> np.ndarray:
         return np.hypot(*np.diff(self._raw(), axis=0).T)
 
+    def open_gaps(self) -> list[tuple[float, float, float]]:
+        """``(width, from, to)`` of every gap between neighbours (A_i and B_i included)
+        as wide as the W2 distance, widest first; ``from`` and ``to`` along A_i -> B_i."""
+        along = np.concatenate([[0.0], np.sort(self.along), [1.0]])
+        gaps = self._gaps()
+        wide = np.flatnonzero(gaps >= self.res.w2_dist)
+        return sorted(((float(gaps[i]), float(along[i]), float(along[i + 1])) for i in wide),
+                      reverse=True)
+
     def middle_touched(self) -> bool:
         """Is some kept contact farther than the end radius from both ends?"""
         return any(min(np.hypot(*(p - self.a)), np.hypot(*(p - self.b))) > self.end_radius
@@ -155,3 +164,58 @@ class Touches:
             return None
         return {"W2": [s for s, k in zip(segments, short) if k],
                 "unknown": [np.vstack([self.a, self.b])]}
+
+
+@dataclass
+class Fill:
+    """Passes aimed into the gaps a lid's touches leave, after the planned passes.
+
+    The revisit's planned passes through a lid laid along a wall land where their
+    grazing lines meet it, and stretches of the wall get no touch: the lid ends
+    ``unknown`` with W2 only where neighbouring touches lie within the W2 distance
+    (:meth:`Touches.pieces`). Where a grazing pass lands moves linearly with a sideways
+    shift of its line (:class:`~core2d.planner.reaim.Aim`), so once the planned passes
+    are spent the robot aims one at the middle of the widest gap between neighbouring
+    touches (A_i and B_i included), from its own landings (:meth:`Aim.toward
+    <core2d.planner.reaim.Aim.toward>`), until every neighbour lies within the W2
+    distance (:meth:`Touches.closes`: W2 along them), a gap was aimed at twice, the
+    widest gap is out of the landings' reach, or ``cap`` passes are made. ``comb``
+    outline seed 1 at sigma 0.1 eps, sensor seed 1001: a lid 5.7 eps down the wall of a
+    slot 1.45 eps wide, 12 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
+    its length; three passes aimed at 0.74, 0.86 and 0.36 landed at 0.73, 0.86 and
+    0.37, and the lid closed W2 along its touches (reachable coverage within eps/2 +
+    2 sigma 0.9943 -> 0.9979). Every contact is judged as a planned pass's is (a new
+    one splits the area, §4.4); the landings only steer where the robot looks. Nothing
+    acts before a pass touched the lid's middle (:meth:`Touches.middle_touched`) and
+    landed on its line (the Aim's series): a lid no pass reached, or one whose passes
+    ended at its ends (the revisit's W3 by probing), is left as it was.
+
+    touches : Touches; aim : Aim -- the lid's touches and its passes' landings.
+    cap : int -- most passes (the revisit gives 2 ceil(Dist(A_i, B_i) / W2 distance),
+        at most :data:`~core2d.planner.pass_plan.MAX_SWEEP`).
+    spent : int -- passes made; tried : dict -- (from, to) of a gap -> passes aimed at it.
+    """
+
+    touches: Touches
+    aim: object
+    cap: int
+    spent: int = 0
+    tried: dict = field(default_factory=dict)
+
+    def next(self):
+        """The next pass ``(point, direction, shift)``, or None when the touches close
+        the lid, the middle is untouched, the passes are spent or none can be aimed."""
+        t = self.touches
+        if self.spent >= self.cap or not t.middle_touched() or t.closes():
+            return None
+        for _, lo, hi in t.open_gaps():
+            key = (round(lo, 9), round(hi, 9))
+            if self.tried.get(key, 0) >= 2:
+                continue
+            again = self.aim.toward(0.5 * (lo + hi))
+            if again is None:
+                return None
+            self.tried[key] = self.tried.get(key, 0) + 1
+            self.spent += 1
+            return again
+        return None

@@ -10,7 +10,6 @@ Example::
 """
 from __future__ import annotations
 
-import importlib.metadata
 import inspect
 import os
 import warnings
@@ -25,7 +24,7 @@ import trimesh
 import meshes
 from meshes.loading import open_edge_count
 from recon3d.checks import InputError, check_flag, check_out_dir
-from recon3d.config import RunConfig, diagonal, resolve, validate
+from recon3d.config import RunConfig, diagonal, package_version, resolve, validate
 from recon3d.spellings import make_config, number, numpydoc_params, run_signature
 from recon3d.io.documents import metrics_document, sensing_document
 from recon3d.io.outputs import slices_png_bytes, write_outputs
@@ -50,14 +49,7 @@ Source = trimesh.Trimesh | str | os.PathLike
 """What :func:`run` senses: a trimesh, a built-in scene name or a mesh file path."""
 
 
-def _version() -> str:
-    try:
-        return importlib.metadata.version("pulling-probe-3d")
-    except importlib.metadata.PackageNotFoundError:  # pragma: no cover - not installed
-        return "0+unknown"
-
-
-__version__ = _version()
+__version__ = package_version()
 """The version of the installed distribution ``pulling-probe-3d``."""
 
 

@@ -19,12 +19,12 @@ resolved in one place, :func:`resolve`.
 from __future__ import annotations
 
 import dataclasses
+import importlib.metadata
 import os
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-import trimesh
 
 import slicer
 from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, InputError,
@@ -32,6 +32,9 @@ from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, I
                             check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
                             check_slices, check_tol, parse_slices, positive, units_note)
 from recon3d.param import Param, param
+
+if TYPE_CHECKING:  # annotations only: the parser of recon3d loads no trimesh (--help)
+    import trimesh
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
            "default_jobs", "COARSE", "METHODS"]
@@ -260,10 +263,20 @@ def diagonal(mesh: trimesh.Trimesh) -> float:
     ``np.ptp(mesh.bounds, axis=0)`` (``mesh_scale(mesh)`` itself spans every
     vertex, unreferenced ones too).
 
+    >>> import trimesh
     >>> diagonal(trimesh.creation.box(extents=[3.0, 4.0, 12.0]))
     13.0
     """
     return slicer.mesh_scale(mesh.bounds)
+
+
+def package_version() -> str:
+    """The version of the installed distribution ``pulling-probe-3d`` (``recon3d
+    --version``, ``recon3d.__version__``)."""
+    try:
+        return importlib.metadata.version("pulling-probe-3d")
+    except importlib.metadata.PackageNotFoundError:  # pragma: no cover - not installed
+        return "0+unknown"
 
 
 def default_jobs() -> int:

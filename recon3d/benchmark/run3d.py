@@ -20,14 +20,12 @@ import logging
 import math
 import time
 
-from recon3d.benchmark import (backends, baseline, charts, claims, pareto, stability,
+from recon3d.benchmark import (PARTS, backends, baseline, charts, claims, pareto, stability,
                                 stability_charts)
 from recon3d.io.staged import Staged
 from recon3d.jobs.cluster import run_tasks
 
 __all__ = ["PARTS", "run_bench", "write_outputs", "dispatch", "write_csv"]
-
-PARTS = ("pareto", "backends", "baseline", "stability", "claims")
 
 
 def dispatch(task: dict) -> dict:

@@ -13,9 +13,6 @@ from pathlib import Path
 
 from recon3d.checks import InputError, at_least, check_out_dir
 from recon3d.spellings import manifest_doc
-from recon3d.io.lock import OutputLock
-from recon3d.jobs.batch import read_manifest, run_job, write_batch
-from recon3d.jobs.cluster import run_tasks
 
 __all__ = ["HELP", "add_arguments", "command", "add_cluster_flags"]
 
@@ -42,6 +39,10 @@ def add_arguments(p) -> None:
 
 
 def command(args) -> int:
+    # the batch's libraries (the runs, Dask): `recon3d --help` loads none of them
+    from recon3d.io.lock import OutputLock  # lazy: recon3d.io loads the records (core2d)
+    from recon3d.jobs.batch import read_manifest  # lazy: see above
+
     if args.workers is not None:
         at_least(args.workers, "--workers")
     check_out_dir(args.out, "--out")
@@ -69,6 +70,9 @@ def _refuse_earlier_batch(out, overwrite: bool) -> None:
 
 def _run(args, jobs) -> list[dict]:
     """Run the jobs and write their outputs (``--out`` held); the results."""
+    from recon3d.jobs.batch import run_job, write_batch  # lazy: as in command
+    from recon3d.jobs.cluster import run_tasks  # lazy: Dask
+
     try:
         results = run_tasks(run_job, jobs, args.scheduler, args.workers, desc="batch",
                             quiet=args.quiet)

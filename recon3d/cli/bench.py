@@ -9,8 +9,7 @@ outputs from their CSVs (no sensing; parts run apart are merged).
 """
 from __future__ import annotations
 
-from recon3d.benchmark.redraw import redraw
-from recon3d.benchmark.run3d import PARTS, run_bench
+from recon3d.benchmark import PARTS
 from recon3d.checks import InputError, at_least, check_out_dir
 from recon3d.cli.batch import add_cluster_flags
 
@@ -34,6 +33,10 @@ def add_arguments(p) -> None:
 
 
 def command(args) -> int:
+    # the benchmark's libraries (the runs, Dask, matplotlib): `recon3d --help` loads none
+    from recon3d.benchmark.redraw import redraw  # lazy: see above
+    from recon3d.benchmark.run3d import run_bench  # lazy: see above
+
     parts = PARTS if not args.parts else tuple(p.strip() for p in args.parts.split(","))
     bad = [p for p in parts if p not in PARTS]
     if bad or not parts:

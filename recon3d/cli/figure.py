@@ -19,8 +19,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from recon3d.checks import InputError
-from recon3d.io.motions import read_log
-from recon3d.viz import animate, figure2d, libs, rundata
+from recon3d.viz import animate, figure2d, libs
 
 __all__ = ["HELP", "add_arguments", "command", "FIGURE_SUFFIXES"]
 
@@ -104,6 +103,10 @@ def _write(path: Path, draw) -> None:
 def command(args) -> int:
     out = Path(args.out)
     _check_out(out, animate.FORMATS if args.animate else FIGURE_SUFFIXES)
+    # the run's files: meshes, the slicer, the records (core2d); `recon3d --help` needs none
+    from recon3d.io.motions import read_log  # lazy: see above
+    from recon3d.viz import rundata  # lazy: see above
+
     sensing, views = rundata.read_views(args.dir)
     view = _pick(views, args.family, args.slice)
     rundata.attach_log(view, read_log(args.dir))

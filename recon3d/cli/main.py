@@ -7,6 +7,10 @@ traceback. Python warnings print as one line (``recon3d: warning: ...``),
 never with a line of source code. A sensing worker that died is one line and
 exit status 1; SIGINT, SIGTERM and SIGHUP one line and 128 + the signal
 (:mod:`recon3d.cli.signals`); a closed stdout (``| head``) nothing and 141.
+
+Building the parser loads no mesh, sensing or plotting library (``recon3d --help`` and
+``recon3d run --help`` answer at once): each subcommand imports what it runs inside its
+``command``.
 """
 from __future__ import annotations
 
@@ -17,11 +21,10 @@ import re
 import sys
 import warnings
 
-import meshes
-from recon3d.api import WorkerDied, __version__
 from recon3d.checks import InputError
 from recon3d.cli import batch, bench, figure, run, show
 from recon3d.cli.printing import warn
+from recon3d.config import package_version
 from recon3d.cli.signals import closed_stdout, exit_status, interrupted_line, interrupts
 
 __all__ = ["main", "entry", "end", "build_parser"]
@@ -43,6 +46,8 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 
 
 def _cmd_scenes(args: argparse.Namespace) -> int:
+    import meshes  # lazy: the scenes load trimesh and manifold3d; the parser needs neither
+
     for name in meshes.names():
         print(f"{name}\t{meshes.describe(name)}")
     return 0
@@ -60,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Slice-based pulling-motion tactile sensing of 3D meshes "
         "(Kaneko & Tsuji, WAFR 2000, extended to 3D).",
     )
-    parser.add_argument("--version", action="version", version=f"recon3d {__version__}")
+    parser.add_argument("--version", action="version", version=f"recon3d {package_version()}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     p = sub.add_parser("scenes", help="list built-in scenes as NAME<TAB>description")
@@ -101,7 +106,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"recon3d: error: {exc}", file=sys.stderr)
             return 2
         # -- processes: a worker that died (not the user's input), a signal, stdout closed
-        except WorkerDied as exc:
+        except RuntimeError as exc:
+            from recon3d.api import WorkerDied  # lazy: loaded by the run that raised it
+
+            if not isinstance(exc, WorkerDied):
+                raise
             print(f"recon3d: error: {exc}", file=sys.stderr)
             return 1
         except KeyboardInterrupt as exc:  # SIGINT, SIGTERM, SIGHUP

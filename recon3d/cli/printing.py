@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from recon3d.api import Result
 from recon3d.config import diagonal
-from recon3d.records import MeshRun, SliceRun
 from recon3d.spellings import number, percent
+
+if TYPE_CHECKING:  # annotations only: warn() serves the parser, which loads no run
+    from recon3d.api import Result
+    from recon3d.records import MeshRun, SliceRun
 
 __all__ = ["warn", "summary_lines", "coverage_lines", "format_seconds", "projected_seconds",
            "estimate_note", "LONG_RUN_SECONDS"]

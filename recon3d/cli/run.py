@@ -20,13 +20,10 @@ import time
 
 from tqdm import tqdm
 
-import meshes
-from recon3d.api import COMPILE_NOTICE, cold_kernels, execute, load_input
 from recon3d.checks import check_out_dir
 from recon3d.cli.printing import estimate_note, summary_lines, warn
 from recon3d.config import PARAMS, default_jobs, validate
 from recon3d.spellings import make_config
-from recon3d.io.lock import OutputLock
 
 __all__ = ["HELP", "add_arguments", "command", "COMMAND_FLAGS"]
 
@@ -71,6 +68,10 @@ def _progress_bar(total, name, quiet):
 
 
 def command(args) -> int:
+    # the run's libraries (trimesh, the sensing, VTK): `recon3d --help` loads none of them
+    from recon3d.api import load_input  # lazy: see above
+    from recon3d.io.lock import OutputLock  # lazy: recon3d.io loads the records (core2d)
+
     given = {p.key: v for p in PARAMS if (v := getattr(args, p.key)) is not None}
     config = make_config(**given)
     mesh, name, notes = load_input(args.input, config.drop_nonfinite)
@@ -87,6 +88,9 @@ def command(args) -> int:
 
 def _run(args, config, mesh, name, notes):
     """Sense, reconstruct, score and write (``--out`` held); the Result and its files."""
+    import meshes  # lazy: with the run's libraries (command)
+    from recon3d.api import COMPILE_NOTICE, cold_kernels, execute  # lazy: as meshes
+
     if os.path.exists(args.input) and not args.quiet:  # a file: one-line report (units, scale)
         print(meshes.format_report(meshes.mesh_report(mesh)), file=sys.stderr)
     for note in notes:

@@ -9,7 +9,6 @@ import os
 from pathlib import Path
 
 from recon3d.checks import InputError
-from recon3d.viz import blocks, plot
 
 __all__ = ["HELP", "add_arguments", "command"]
 
@@ -21,6 +20,8 @@ def add_arguments(p) -> None:
 
 
 def command(args) -> int:
+    from recon3d.viz import blocks, plot  # lazy: trimesh and the records; --help needs none
+
     path = Path(args.dir)
     vtm = path / "scene.vtm" if path.is_dir() else path
     if not vtm.is_file():

@@ -11,9 +11,12 @@ through these functions, so
 from __future__ import annotations
 
 import types
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
+
+if TYPE_CHECKING:  # an annotation only: the package loads no trimesh (recon3d --help)
+    import trimesh
 
 __all__ = ["pyvista", "pyvista_plotting", "vtm_writer", "polydata", "pyplot", "ticker",
            "collections", "lines", "pil_image"]

@@ -77,7 +77,8 @@ class PassPlan:
         planned only when it is next).
 
     :meth:`push` puts a pass first (a grazing pass aimed again,
-    :class:`~core2d.planner.reaim.Aim`); :attr:`count` is how many were taken.
+    :class:`~core2d.planner.reaim.Aim`); :attr:`count` is how many were taken;
+    :attr:`exhausted` whether the last :meth:`next` found none left.
     """
 
     def __init__(self, sources: Iterable[Iterable]):

@@ -103,13 +103,10 @@ class Aim:
         """
         if not 0.0 < self.res.jitter <= MAX_JITTER * self.res.eps or self.spent >= MAX_REAIM:
             return None
-        ab = self.b - self.a
-        n2 = float(ab @ ab)
-        c = np.asarray(contact, float)
-        if n2 == 0.0 or abs(float(cross(ab, c - self.a))) / np.sqrt(n2) > self.res.jitter:
+        u = self.on_line(contact)
+        if u is None:
             return None
-        length = np.sqrt(n2)
-        u = float((c - self.a) @ ab) / n2
+        length = np.sqrt(float((self.b - self.a) @ (self.b - self.a)))
         if abs(u - 0.5) * length <= self.res.eps / 4.0:
             return None
         d = np.asarray(direction, float)

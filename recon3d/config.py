@@ -37,7 +37,7 @@ if TYPE_CHECKING:  # annotations only: the parser of recon3d loads no trimesh (-
     import trimesh
 
 __all__ = ["RunConfig", "Param", "PARAMS", "Resolved", "validate", "resolve", "diagonal",
-           "default_jobs", "COARSE", "METHODS"]
+           "package_version", "default_jobs", "COARSE", "METHODS"]
 
 METHODS = ("pulling", "paper", "follow")
 """``--method``: the planner's flows (:mod:`core2d.planner.flow`) and the pushing

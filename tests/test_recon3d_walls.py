@@ -177,7 +177,8 @@ def test_import_recon3d_is_light():
 def test_the_command_line_parser_loads_no_run():
     """``recon3d --help``, every subcommand's ``--help`` and ``--version`` build the whole
     parser and load none of the run's libraries: each subcommand imports what it runs
-    inside its ``command`` (``recon3d --help`` 1.0 s before, 0.14 s after, idle 2-core machine)."""
+    inside its ``command`` (``recon3d --help`` 1.0 s before, 0.14 s after, idle 2-core
+    machine)."""
     code = ("import sys, contextlib, io; from recon3d.cli import main\n"
             "with contextlib.redirect_stdout(io.StringIO()):\n"
             "    for argv in (['--help'], ['run', '--help'], ['batch', '--help'], "

@@ -24,8 +24,8 @@ import warnings
 from recon3d.checks import InputError
 from recon3d.cli import batch, bench, figure, run, show
 from recon3d.cli.printing import warn
-from recon3d.config import package_version
 from recon3d.cli.signals import closed_stdout, exit_status, interrupted_line, interrupts
+from recon3d.config import package_version
 
 __all__ = ["main", "entry", "end", "build_parser"]
 

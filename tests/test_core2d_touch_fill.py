@@ -145,7 +145,7 @@ def test_a_gap_is_aimed_at_twice_at_most():
 
 def test_the_slot_wall_of_the_comb_outline_closes_w2_at_sigma_01(monkeypatch):
     """``comb`` outline seed 1, sigma 0.1 eps, sensor seed 1001: a lid 5.7 eps down the
-    wall of a slot 1.45 eps wide, touched by 12 planned passes at 0.23, 0.48 - 0.50 and
+    wall of a slot 1.45 eps wide, touched by 9 planned passes at 0.23, 0.48 - 0.50 and
     0.98 of its length, ended ``unknown``; three passes into its gaps closed it W2.
     Reachable coverage within eps/2 + 2 sigma without the Fill 0.9943, with it 0.9979."""
     made, recorded = [], []

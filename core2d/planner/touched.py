@@ -181,7 +181,7 @@ class Fill:
     distance (:meth:`Touches.closes`: W2 along them), a gap was aimed at twice, the
     widest gap is out of the landings' reach, or ``cap`` passes are made. ``comb``
     outline seed 1 at sigma 0.1 eps, sensor seed 1001: a lid 5.7 eps down the wall of a
-    slot 1.45 eps wide, 12 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
+    slot 1.45 eps wide, 9 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
     its length; three passes aimed at 0.74, 0.86 and 0.36 landed at 0.73, 0.86 and
     0.37, and the lid closed W2 along its touches (reachable coverage within eps/2 +
     2 sigma 0.9943 -> 0.9979). Every contact is judged as a planned pass's is (a new

@@ -44,10 +44,12 @@ unchanged):
 """
 from __future__ import annotations
 
+import numpy as np
+
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["JUMPS", "is_mouth", "covered", "close_unresolved"]
+__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "close_unresolved"]
 
 JUMPS = ("case2-1", "case2-2", "hop")
 """Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
@@ -76,9 +78,21 @@ def covered(known, a, b, tol: float, res: Resolution) -> bool:
     """C_{A_i}^{B_i} traced through other areas: a chain of recorded pieces
     leads from A_i to B_i (:meth:`~core2d.planner.known.KnownContour.covers`)
     and, under a sensor whose readings resolve eps/2, every hop between two
-    of its pieces is narrower than eps.
+    of its pieces is narrower than eps (:func:`traced_gaps`).
 
-    The map joins pieces across gaps narrower than the W2 distance eps +
+    known : KnownContour
+    a, b : (2,) float -- A_i and B_i.
+    tol : float -- how near A_i and B_i the chain must start and end.
+    res : Resolution -- the sensor's stated resolution.
+    """
+    return traced_gaps(known, a, b, tol, res) is not None
+
+
+def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | None:
+    """The W2 chords that C_{A_i}^{B_i}, traced through other areas, leaves
+    between its recorded pieces; None when it is not traced (:func:`covered`).
+
+    The map joins recorded pieces across gaps narrower than the W2 distance eps +
     jitter, so a chain may hop an opening that reads between eps and eps +
     jitter -- the mouth of the very area asked about. Such a chain is no
     evidence that C_A^B was traced (§3.1 approximates only gaps narrower
@@ -86,15 +100,37 @@ def covered(known, a, b, tol: float, res: Resolution) -> bool:
     eps and this is ``covers``; a coarse sensor (sigma 0.3 eps) keeps
     ``covers``, whose readings cannot tell eps from 2.5 eps.
 
-    known : KnownContour
-    a, b : (2,) float -- A_i and B_i.
-    tol : float -- how near A_i and B_i the chain must start and end.
-    res : Resolution -- the sensor's stated resolution.
+    What the chain does not hold is still approximated: A_i and B_i may lie up to
+    ``tol`` (the same-contact radius, 2 eps at sigma 0.3 eps with taxels 0.25 eps)
+    from its ends, and its pieces up to ``join`` (eps + jitter) apart. Each such
+    gap longer than eps/2 -- A_i to the chain's start, the hops, the chain's end to
+    B_i -- is returned as a W2 chord (Dist < eps + jitter, §3.1 at the sensor's
+    resolution), so that the result shows all of the contour the planner closes as
+    known. With perfect sensing the ends lie within eps/2 (``tol`` is the tip zone,
+    eps/2) and only hops wider than eps/2 are returned.
+
+    Returns
+    -------
+    list of (2, 2) float, or None.
+
+    Examples
+    --------
+    >>> from core2d.planner.known import KnownContour
+    >>> known = KnownContour(join=1.0)
+    >>> known.add(np.array([[0.0, 0.0], [3.0, 0.0]]))
+    >>> known.add(np.array([[3.8, 0.0], [6.0, 0.0]]))
+    >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.4), (6.0, 0.0), 0.5, Resolution.of(1.0))]
+    [[[3.0, 0.0], [3.8, 0.0]]]
     """
-    if not resolves_half_eps(res):
-        return known.covers(a, b, tol)
-    hop = known.widest_hop(a, b, tol)
-    return hop is not None and hop < res.eps
+    found = known.chain_hops(a, b, tol)
+    if found is None:
+        return None
+    points, widest, hops = found
+    if resolves_half_eps(res) and widest >= res.eps:
+        return None
+    ends = np.array([(a, points[0]), (points[-1], b)], dtype=float)
+    gaps = np.concatenate([ends[:1], hops, ends[1:]])
+    return [g for g in gaps if np.hypot(*(g[1] - g[0])) > res.eps / 2]
 
 
 def close_unresolved(run) -> int:

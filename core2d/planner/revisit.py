@@ -7,8 +7,9 @@ say that the recorded postures leave no pass, not that none exists. Once
 nothing else is left, every deferred area A_iB_i is looked at again against
 the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
-1. C_A^B has meanwhile been traced through other areas -> closed as traced;
-   so is a lid lying along contour recorded from B_i to A_i (a traced wall
+1. C_A^B has meanwhile been traced through other areas -> closed as traced
+   (with W2 chords over what the chain hops:
+   :func:`~core2d.planner.mouths.traced_gaps`); so is a lid lying along contour recorded from B_i to A_i (a traced wall
    read backwards, :func:`reversed_lid`).
 2. The lid could be a W3 lid only if it crosses no recorded contour
    (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
@@ -98,7 +99,7 @@ import shapely
 
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
-from core2d.planner.mouths import covered
+from core2d.planner.mouths import traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
@@ -239,8 +240,10 @@ def revisit_one(run: Exploration, area):
     Returns a W3 reason when the lid passed its proof or its probing and
     waits for step 4, else None (the area was closed, split or deferred)."""
     probe, known = run.probe, run.known
-    if covered(known, area.a, area.b, run.res.tip_zone, run.res):
-        return run.close(area, "traced", "C_A^B traced through other areas")
+    gaps = traced_gaps(known, area.a, area.b, run.res.tip_zone, run.res)
+    if gaps is not None:
+        return run.close(area, "traced", "C_A^B traced through other areas",
+                         pieces={"W2": gaps} if gaps else None)
     if on_recorded(run, area):
         return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")
     if reversed_lid(run, area):

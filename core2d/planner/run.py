@@ -17,7 +17,8 @@ recorded itself; it never sees the contour. Per unknown area A_iB_i:
    Fig. 12(c) split for a one-sided start).
 
 An area whose contour C_A^B has meanwhile been traced through other areas
-(:meth:`KnownContour.covers`) is closed as traced. A dead end -- no pass, or
+(:meth:`KnownContour.covers`) is closed as traced; the gaps the chain hops are
+written W2 (:func:`~core2d.planner.mouths.traced_gaps`). A dead end -- no pass, or
 a pass that finds no new contact -- never makes W3: the area is deferred,
 and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).
@@ -49,7 +50,7 @@ from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.mouths import close_unresolved, covered, is_mouth
+from core2d.planner.mouths import close_unresolved, is_mouth, traced_gaps
 from core2d.planner.openings import SweptRobot
 from core2d.planner.regions import Posture, near_probe
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
@@ -179,11 +180,12 @@ class Exploration:
     def close(self, area, outcome, note="", pieces=None):
         """Record ``area``'s outcome; a W2, W3 or unknown area writes its lid, or
         ``pieces`` ({"W2" / "unknown": list of (2, 2) float}: a lid the revisit's passes
-        touched, :mod:`core2d.planner.touched`), which the map leaves out as it leaves an
-        unknown lid."""
+        touched, :mod:`core2d.planner.touched`; the gaps of a contour traced through
+        other areas, :func:`~core2d.planner.mouths.traced_gaps`), which the map leaves
+        out as it leaves an unknown lid."""
         rec = self.result.areas[area.index]
         rec.outcome, rec.note = outcome, note
-        if outcome in ("W2", "W3", "unknown"):
+        if outcome in ("W2", "W3", "unknown") or pieces:
             lid = np.stack([area.a, area.b])
             for kind, segments in (pieces or {outcome: [lid]}).items():
                 for seg in segments:
@@ -245,8 +247,11 @@ class Exploration:
             self.mouths.append(area)
         same = self.same
         # no hop across a mouth (a gap that reads >= eps) counts (core2d.planner.mouths)
-        if self.flow.covers and covered(self.known, area.a, area.b, same, self.res):
-            return self.close(area, "traced", "C_A^B traced through other areas")
+        gaps = traced_gaps(self.known, area.a, area.b, same, self.res) if self.flow.covers \
+            else None
+        if gaps is not None:
+            return self.close(area, "traced", "C_A^B traced through other areas",
+                              pieces={"W2": gaps} if gaps else None)
         if area.zero_G:
             return self.zero_G(area)
         G = area.G

@@ -102,12 +102,13 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
 
     What the chain does not hold is still approximated: A_i and B_i may lie up to
     ``tol`` (the same-contact radius, 2 eps at sigma 0.3 eps with taxels 0.25 eps)
-    from its ends, and its pieces up to ``join`` (eps + jitter) apart. Each such
-    gap longer than eps/2 -- A_i to the chain's start, the hops, the chain's end to
-    B_i -- is returned as a W2 chord (Dist < eps + jitter, §3.1 at the sensor's
-    resolution), so that the result shows all of the contour the planner closes as
-    known. With perfect sensing the ends lie within eps/2 (``tol`` is the tip zone,
-    eps/2) and only hops wider than eps/2 are returned.
+    from its ends, and its pieces up to ``join`` (eps + jitter) apart. A gap no
+    longer than eps needs nothing: each point of it lies within eps/2 of the
+    recorded contour at its ends (§3.1's bound). Each longer gap -- A_i to the
+    chain's start, a hop, the chain's end to B_i -- is returned as a W2 chord
+    (Dist < eps + jitter, §3.1 at the sensor's resolution), so that the result
+    shows all of the contour the planner closes as known. With perfect sensing
+    there is none (``tol`` is the tip zone, eps/2, and ``join`` is eps).
 
     Returns
     -------
@@ -116,11 +117,12 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     Examples
     --------
     >>> from core2d.planner.known import KnownContour
-    >>> known = KnownContour(join=1.0)
+    >>> coarse = Resolution.of(1.0, noise=0.3, taxel=0.25)  # W2 distance 2.52, tip zone 2.02
+    >>> known = KnownContour(join=coarse.w2_dist)
     >>> known.add(np.array([[0.0, 0.0], [3.0, 0.0]]))
-    >>> known.add(np.array([[3.8, 0.0], [6.0, 0.0]]))
-    >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.4), (6.0, 0.0), 0.5, Resolution.of(1.0))]
-    [[[3.0, 0.0], [3.8, 0.0]]]
+    >>> known.add(np.array([[5.0, 0.0], [6.0, 0.0]]))
+    >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.4), (7.5, 0.0), 2.0, coarse)]
+    [[[3.0, 0.0], [5.0, 0.0]], [[6.0, 0.0], [7.5, 0.0]]]
     """
     found = known.chain_hops(a, b, tol)
     if found is None:
@@ -130,7 +132,7 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
         return None
     ends = np.array([(a, points[0]), (points[-1], b)], dtype=float)
     gaps = np.concatenate([ends[:1], hops, ends[1:]])
-    return [g for g in gaps if np.hypot(*(g[1] - g[0])) > res.eps / 2]
+    return [g for g in gaps if np.hypot(*(g[1] - g[0])) > res.eps]
 
 
 def close_unresolved(run) -> int:

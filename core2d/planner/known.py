@@ -257,14 +257,9 @@ class KnownContour:
         found = self._chain(a, b, tol, ())
         return None if found is None else found[1]
 
-    def chain_hops(self, a, b, tol: float):
-        """:meth:`chain` with its hops: ``(points, widest, hops)`` or None.
-
-        points : (k, 2) float -- the chain (as :meth:`chain`).
-        widest : float -- :meth:`widest_hop`.
-        hops : (h, 2, 2) float -- each hop between two pieces of the chain, from the
-            last point of one to the first point of the next.
-        """
+    def chain_and_hop(self, a, b, tol: float):
+        """:meth:`chain` and :meth:`widest_hop` from one search: ``(points, widest)``,
+        or None when no chain leads there."""
         return self._chain(a, b, tol, ())
 
     def chain(self, a, b, tol: float, exclude=()):
@@ -275,7 +270,7 @@ class KnownContour:
         return None if found is None else found[0]
 
     def _chain(self, a, b, tol: float, exclude):
-        """:meth:`chain_hops`, or None."""
+        """:meth:`chain` and :meth:`widest_hop` together, or None."""
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
@@ -300,10 +295,10 @@ class KnownContour:
             todo.extend((j, float(first[j] + k), i) for j, k in self._next[i])
         return None
 
-    def _walk(self, last, end_pos, reached, came):
+    def _walk(self, last, end_pos, reached, came) -> tuple[np.ndarray, float]:
         """Points of the chain that ends in piece ``last`` at ``end_pos``:
-        each piece from where it was reached to its end (or to B); the
-        widest hop between two pieces of it; the hops ((h, 2, 2) float)."""
+        each piece from where it was reached to its end (or to B); and the
+        widest hop between two pieces of it."""
         parts, i, stop, seen = [], last, end_pos, set()
         while i is not None and i not in seen:  # a re-reached piece can close a cycle
             seen.add(i)
@@ -312,10 +307,8 @@ class KnownContour:
             if i is not None:
                 stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
         parts = parts[::-1]
-        hops = np.array([(p[-1], q[0]) for p, q in zip(parts, parts[1:])],
-                        dtype=float).reshape(-1, 2, 2)
-        widest = float(np.hypot(*(hops[:, 1] - hops[:, 0]).T).max()) if len(hops) else 0.0
-        return np.concatenate(parts), widest, hops
+        hops = [float(np.hypot(*(q[0] - p[-1]))) for p, q in zip(parts, parts[1:])]
+        return np.concatenate(parts), max(hops, default=0.0)
 
     def _span(self, i, start, stop) -> np.ndarray:
         """Points of piece ``i`` between global segment positions ``start`` and ``stop``."""

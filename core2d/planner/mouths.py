@@ -89,8 +89,8 @@ def covered(known, a, b, tol: float, res: Resolution) -> bool:
 
 
 def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | None:
-    """The W2 chords that C_{A_i}^{B_i}, traced through other areas, leaves
-    between its recorded pieces; None when it is not traced (:func:`covered`).
+    """The W2 chords that join A_i and B_i to the chain of recorded pieces over
+    C_{A_i}^{B_i}, traced through other areas; None when it is not (:func:`covered`).
 
     The map joins recorded pieces across gaps narrower than the W2 distance eps +
     jitter, so a chain may hop an opening that reads between eps and eps +
@@ -100,39 +100,37 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     eps and this is ``covers``; a coarse sensor (sigma 0.3 eps) keeps
     ``covers``, whose readings cannot tell eps from 2.5 eps.
 
-    What the chain does not hold is still approximated: A_i and B_i may lie up to
-    ``tol`` (the same-contact radius, 2 eps at sigma 0.3 eps with taxels 0.25 eps)
-    from its ends, and its pieces up to ``join`` (eps + jitter) apart. A gap no
-    longer than eps needs nothing: each point of it lies within eps/2 of the
-    recorded contour at its ends (§3.1's bound). Each longer gap -- A_i to the
-    chain's start, a hop, the chain's end to B_i -- is returned as a W2 chord
-    (Dist < eps + jitter, §3.1 at the sensor's resolution), so that the result
-    shows all of the contour the planner closes as known. With perfect sensing
-    there is none (``tol`` is the tip zone, eps/2, and ``join`` is eps).
+    The chain starts and ends within ``tol`` of A_i and B_i: the same-contact
+    radius, eps/2 with perfect sensing, 2 eps at sigma 0.3 eps with taxels 0.25 eps.
+    A_i and B_i are readings of their own, often in no recorded piece, so the
+    contour between them and the chain's ends is in no piece either. An end gap
+    no longer than eps needs nothing (each point of it lies within eps/2 of A_i or
+    of the chain, §3.1's bound); a longer one is returned as a W2 chord (Dist <
+    eps + jitter, §3.1 at the sensor's resolution), so that the result shows all
+    of the contour the planner closes as known. With perfect sensing there is
+    none.
 
     Returns
     -------
-    list of (2, 2) float, or None.
+    list of (2, 2) float (at most two), or None.
 
     Examples
     --------
     >>> from core2d.planner.known import KnownContour
-    >>> coarse = Resolution.of(1.0, noise=0.3, taxel=0.25)  # W2 distance 2.52, tip zone 2.02
+    >>> coarse = Resolution.of(1.0, noise=0.3, taxel=0.25)  # tip zone 2.02 eps
     >>> known = KnownContour(join=coarse.w2_dist)
-    >>> known.add(np.array([[0.0, 0.0], [3.0, 0.0]]))
-    >>> known.add(np.array([[5.0, 0.0], [6.0, 0.0]]))
+    >>> known.add(np.array([[0.0, 0.0], [6.0, 0.0]]))
     >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.4), (7.5, 0.0), 2.0, coarse)]
-    [[[3.0, 0.0], [5.0, 0.0]], [[6.0, 0.0], [7.5, 0.0]]]
+    [[[6.0, 0.0], [7.5, 0.0]]]
+    >>> traced_gaps(known, (0.0, 0.4), (9.0, 0.0), 2.0, coarse) is None
+    True
     """
-    found = known.chain_hops(a, b, tol)
-    if found is None:
+    found = known.chain_and_hop(a, b, tol)
+    if found is None or (resolves_half_eps(res) and found[1] >= res.eps):
         return None
-    points, widest, hops = found
-    if resolves_half_eps(res) and widest >= res.eps:
-        return None
-    ends = np.array([(a, points[0]), (points[-1], b)], dtype=float)
-    gaps = np.concatenate([ends[:1], hops, ends[1:]])
-    return [g for g in gaps if np.hypot(*(g[1] - g[0])) > res.eps]
+    chain = found[0]
+    ends = np.array([(a, chain[0]), (chain[-1], b)], dtype=float)
+    return [g for g in ends if np.hypot(*(g[1] - g[0])) > res.eps]
 
 
 def close_unresolved(run) -> int:

@@ -226,6 +226,15 @@ class KnownContour:
         return float(nearest_distance(float(p[0]), float(p[1]), self._starts, self._lo,
                                       self._hi, self._piece, self._a, self._b))
 
+    def nearest_point(self, point) -> np.ndarray | None:
+        """(2,) float: the point of the recorded contour nearest ``point`` (None if none)."""
+        if len(self._a) == 0:
+            return None
+        p = np.asarray(point, float)
+        t = segment_params(p, self._a, self._b)
+        q = self._a + t[:, None] * (self._b - self._a)
+        return q[int(np.argmin(np.hypot(*(q - p).T)))]
+
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
         a, b = self._a, self._b
@@ -256,11 +265,6 @@ class KnownContour:
         one piece), or None when no chain leads there."""
         found = self._chain(a, b, tol, ())
         return None if found is None else found[1]
-
-    def chain_and_hop(self, a, b, tol: float):
-        """:meth:`chain` and :meth:`widest_hop` from one search: ``(points, widest)``,
-        or None when no chain leads there."""
-        return self._chain(a, b, tol, ())
 
     def chain(self, a, b, tol: float, exclude=()):
         """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)

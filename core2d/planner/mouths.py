@@ -103,16 +103,16 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     The chain starts and ends within ``tol`` of A_i and B_i: the same-contact
     radius, eps/2 with perfect sensing, 2 eps at sigma 0.3 eps with taxels 0.25 eps.
     A_i and B_i are readings of their own, often in no recorded piece, so the
-    contour between them and the chain's ends is in no piece either. An end gap
-    no longer than eps needs nothing (each point of it lies within eps/2 of A_i or
-    of the chain, §3.1's bound); a longer one is returned as a W2 chord (Dist <
-    eps + jitter, §3.1 at the sensor's resolution), so that the result shows all
-    of the contour the planner closes as known. With perfect sensing there is
-    none.
+    contour between them and the recorded contour is in no piece either. An end
+    no farther than eps from the recorded contour needs nothing (each point of
+    the gap lies within eps/2 of A_i or of the contour, §3.1's bound); a farther
+    one is joined to the nearest recorded point by a W2 chord (Dist < eps +
+    jitter, §3.1 at the sensor's resolution), so that the result shows all of
+    the contour the planner closes as known. With perfect sensing there is none.
 
     Returns
     -------
-    list of (2, 2) float (at most two), or None.
+    list of (2, 2) float (at most two: from A_i, to B_i), or None.
 
     Examples
     --------
@@ -125,12 +125,18 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     >>> traced_gaps(known, (0.0, 0.4), (9.0, 0.0), 2.0, coarse) is None
     True
     """
-    found = known.chain_and_hop(a, b, tol)
-    if found is None or (resolves_half_eps(res) and found[1] >= res.eps):
+    if resolves_half_eps(res):
+        hop = known.widest_hop(a, b, tol)
+        if hop is None or hop >= res.eps:
+            return None
+    elif not known.covers(a, b, tol):
         return None
-    chain = found[0]
-    ends = np.array([(a, chain[0]), (chain[-1], b)], dtype=float)
-    return [g for g in ends if np.hypot(*(g[1] - g[0])) > res.eps]
+    gaps = []
+    for end, first in ((a, True), (b, False)):
+        if known.distance(end) > res.eps:
+            q = known.nearest_point(end)
+            gaps.append(np.array([end, q] if first else [q, end], dtype=float))
+    return gaps
 
 
 def close_unresolved(run) -> int:

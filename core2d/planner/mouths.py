@@ -49,7 +49,7 @@ import numpy as np
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "close_unresolved"]
+__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "close_unresolved"]
 
 JUMPS = ("case2-1", "case2-2", "hop")
 """Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
@@ -131,6 +131,20 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
             return None
     elif not known.covers(a, b, tol):
         return None
+    return end_chords(known, a, b, res)
+
+
+def end_chords(known, a, b, res: Resolution) -> list[np.ndarray]:
+    """W2 chords from A_i, and to B_i, from the nearest recorded point, for each end
+    farther than eps from the recorded contour (:func:`traced_gaps`); an area closed
+    as traced because its lid lies along recorded contour
+    (:func:`~core2d.planner.revisit.on_recorded`,
+    :func:`~core2d.planner.revisit.reversed_lid`) has the same ends.
+
+    Returns
+    -------
+    list of (2, 2) float (at most two).
+    """
     gaps = []
     for end, first in ((a, True), (b, False)):
         if known.distance(end) > res.eps:

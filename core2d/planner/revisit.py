@@ -99,7 +99,7 @@ import shapely
 
 from core2d.planner.areas import Area
 from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
-from core2d.planner.mouths import traced_gaps
+from core2d.planner.mouths import end_chords, traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
@@ -244,10 +244,11 @@ def revisit_one(run: Exploration, area):
     if gaps is not None:
         return run.close(area, "traced", "C_A^B traced through other areas",
                          pieces={"W2": gaps} if gaps else None)
-    if on_recorded(run, area):
-        return run.close(area, "traced", "the lid lies on recorded contour (sensor jitter)")
-    if reversed_lid(run, area):
-        return run.close(area, "traced", "the lid lies on contour recorded from B to A")
+    for lies_on, note in ((on_recorded, "the lid lies on recorded contour (sensor jitter)"),
+                          (reversed_lid, "the lid lies on contour recorded from B to A")):
+        if lies_on(run, area):
+            gaps = end_chords(known, area.a, area.b, run.res)
+            return run.close(area, "traced", note, pieces={"W2": gaps} if gaps else None)
     candidate = lid_like(run, area)
     lines = proof_lines(run, area)
     if not lines and candidate:

@@ -70,50 +70,63 @@ def test_perfect_sensing_writes_nothing():
         assert gaps == []
 
 
-def _comb_run(monkeypatch, rule: bool):
-    """``comb`` outline seed 0 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 0: the
-    result, the chords ``traced_gaps`` wrote, the loops."""
+def _outline_run(monkeypatch, kind, seed, sensor_seed, off=None):
+    """``kind`` outline ``seed`` at sigma 0.3 eps, taxels 0.25 eps: the result, the chords
+    written, the loops. ``off``: "traced" -- areas traced through other areas write no
+    chords (:func:`~core2d.planner.mouths.traced_gaps`); "lies_on" -- lids lying along
+    recorded contour write none (:func:`~core2d.planner.mouths.end_chords` in the
+    revisit)."""
     from outlines import outline
     from slicer.contact.exact import ExactContact
 
     chords = []
-    original = mouths.traced_gaps
 
-    def traced_gaps(known, a, b, tol, res):
-        gaps = original(known, a, b, tol, res)
-        if gaps and not rule:
-            return []  # traced as before, nothing written
-        chords.extend(gaps or [])
-        return gaps
+    def counting(original, name):
+        def wrapped(*args):
+            gaps = original(*args)
+            if gaps and off == name:
+                return []  # closed as traced as before, nothing written
+            chords.extend(gaps or [])
+            return gaps
+        return wrapped
 
-    monkeypatch.setattr(run_module, "traced_gaps", traced_gaps)
-    monkeypatch.setattr(revisit, "traced_gaps", traced_gaps)
-    loops = outline("comb", np.random.default_rng(0), 1.0)
+    traced = counting(mouths.traced_gaps, "traced")
+    monkeypatch.setattr(run_module, "traced_gaps", traced)
+    monkeypatch.setattr(revisit, "traced_gaps", traced)
+    monkeypatch.setattr(revisit, "end_chords", counting(mouths.end_chords, "lies_on"))
+    loops = outline(kind, np.random.default_rng(seed), 1.0)
     pts = np.concatenate(loops)
     ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
     res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.3, 0.25, 0))
+                      sensor=SensorModel.of_eps(1.0, 0.3, 0.25, sensor_seed))
     return res, chords, loops
 
 
-def test_the_comb_outline_at_sigma_03_shows_the_slot_its_chain_hopped(monkeypatch):
-    """Read on this run: an area closed as traced whose chain started across the mouth of
-    a slot narrower than the W2 distance (eps + jitter, 2.52 eps), within the same-contact
-    radius of A_i. Without the rule the slot was in neither W1, W2 nor an unknown lid
-    (reachable coverage within eps/2 + 2 sigma 0.887); its mouth's chord now approximates
-    it (§3.1 at the sensor's resolution: 0.972). The planner's motions are the same: the
-    chords go into the result, not into the map."""
+@pytest.mark.parametrize("kind, seed, sensor_seed, rule", [
+    ("comb", 0, 0, "traced"),    # 0.887 -> 0.972
+    ("star", 1, 1, "lies_on"),   # 0.943 -> 0.990
+])
+def test_the_chords_show_the_openings_the_closures_hopped(monkeypatch, kind, seed, sensor_seed,
+                                                          rule):
+    """Read on these runs (sigma 0.3 eps, taxels 0.25 eps). ``comb`` seed 0: an area
+    closed as traced whose chain started across the mouth of a slot narrower than the W2
+    distance (eps + jitter, 2.52 eps), within the same-contact radius of A_i. ``star``
+    seed 1: a lid closed as lying along recorded contour with an end 1.66 eps from it,
+    at the mouth of a slot 1.5 eps wide. Without the chords those slots were in neither
+    W1, W2 nor an unknown lid; the chords approximate them (§3.1 at the sensor's
+    resolution). Reachable coverage within eps/2 + 2 sigma as commented. The
+    motions are the same: the chords go into the result, not into the map."""
     import shapely
 
     from core2d.truth.metrics import sensor_metrics
 
-    before, none, loops = _comb_run(monkeypatch, rule=False)
-    after, chords, _ = _comb_run(monkeypatch, rule=True)
-    assert not none and chords
-    assert after.stats.motions == before.stats.motions
-    m0 = sensor_metrics(loops, before, 1.0, 0.3)
-    m1 = sensor_metrics(loops, after, 1.0, 0.3)
-    assert m1["coverage_sensor"] >= m0["coverage_sensor"] + 0.05, \
+    without, _, loops = _outline_run(monkeypatch, kind, seed, sensor_seed, off=rule)
+    with_, chords, _ = _outline_run(monkeypatch, kind, seed, sensor_seed)
+    assert chords
+    assert with_.stats.motions == without.stats.motions
+    m0 = sensor_metrics(loops, without, 1.0, 0.3)
+    m1 = sensor_metrics(loops, with_, 1.0, 0.3)
+    assert m1["coverage_sensor"] >= m0["coverage_sensor"] + 0.04, \
         (m0["coverage_sensor"], m1["coverage_sensor"])
     assert m1["precision_sensor"] >= 0.98
     # each chord joins two points of the true contour and crosses no material

@@ -1,0 +1,88 @@
+"""Swing passes: touching the contour behind a lid no straight pass from F crosses (noisy sensor).
+
+The revisit's passes are straight insertions from F (Theorem 1's pass, §4.2). A lid laid
+along a wall -- a noisy trace of a deep slot's wall leaves such lids, A_i and B_i read a
+fraction of eps off the wall, the wall between them never recorded -- is crossed by no
+line from F past the recorded contour: every line that could reach the wall behind it
+comes down the slot at a grazing angle. The W3 proof then holds, but the probe cannot
+hold the lid (:func:`~core2d.planner.w3_checks.holds_lid`: inserted along the lid, its
+tip meets nothing at the far end), and the lid ended ``unknown`` with the wall behind it
+untouched (``deep_slot`` at sigma 0.3 eps with taxels 0.25 eps: 120 eps of the scenes'
+missed contour, a quarter of it, lay behind such lids on the study's own seeds).
+
+The probe reaches such a wall the way the bisection does (§4.2.2 (i)): it is inserted
+along a line parallel to the lid, ``off`` in front of it on F's side, until its tip is
+abreast of a point of the lid, and swung about its joint towards V_i until the tip
+touches (or has passed the lid by the W2 distance). Each touch goes to the lid's
+:class:`~core2d.planner.touched.Touches`, as a straight pass's would; a new contact
+behind the lid splits it. The points aimed at are the middles of the widest gaps the
+touches leave (A_i and B_i included), as :class:`~core2d.planner.touched.Fill` aims.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["swing_targets", "swing_pass"]
+
+
+def swing_targets(touches, limit: int):
+    """Fractions along A_i -> B_i to swing at: the middle of the widest open gap of
+    ``touches`` each time, each gap at most twice, at most ``limit`` in all (a generator:
+    the gaps are read again after every pass)."""
+    tried: dict[tuple[float, float], int] = {}
+    for _ in range(limit):
+        gaps = touches.open_gaps()
+        pick = next(((lo, hi) for _, lo, hi in gaps
+                     if tried.get((round(lo, 6), round(hi, 6)), 0) < 2), None)
+        if pick is None:
+            return
+        key = (round(pick[0], 6), round(pick[1], 6))
+        tried[key] = tried.get(key, 0) + 1
+        yield (pick[0] + pick[1]) / 2
+
+
+TILTS = np.radians([0.0, 2.0, -2.0, 4.0, -4.0, 8.0, -8.0])
+"""Directions tried about the lid's, in turn: the lid is a pair of readings, tilted against
+the wall it lies along by up to jitter / length (3 degrees on ``deep_slot``'s walls at sigma
+0.3 eps), and a line parallel to it drifts into that wall over the way in from F."""
+
+
+def _directions(u):
+    """Unit directions along the lid (both ways) tilted by :data:`TILTS`."""
+    for sign in (1.0, -1.0):
+        base = np.arctan2(sign * u[1], sign * u[0])
+        for tilt in TILTS:
+            yield np.array([np.cos(base + tilt), np.sin(base + tilt)])
+
+
+def swing_pass(run, area, fraction: float):
+    """One swing pass at ``fraction`` of the lid; the reading after the swing, or None
+    when no free line parallel to the lid leads abreast of that point, or the
+    insertion met contour before it got there.
+
+    The line runs ``off`` = the same-contact radius in front of the lid, on F's side
+    first, then (a lid read a hair inside the wall, V_i facing the free side) on V_i's;
+    it is entered from whichever end's side reaches it through F without crossing the
+    recorded contour. The swing turns the tip towards the lid, by an angle that carries
+    it ``off`` + the W2 distance sideways (less when the probe is shorter)."""
+    probe, res, known = run.probe, run.res, run.known
+    a, b = np.asarray(area.a, float), np.asarray(area.b, float)
+    u = (b - a) / area.dist
+    left = np.array([-u[1], u[0]])  # towards V_i (Definition 3)
+    off = res.tip_zone
+    lateral = min(off + res.w2_dist, 0.9 * probe.length)
+    for side in (1, -1):  # F's side, then V_i's
+        q = a + fraction * (b - a) - side * off * left
+        for t in _directions(u):
+            if known.crosses(q - (2.0 * probe.radius) * t, q, res.tol):
+                continue
+            probe.approach(q, t)
+            reach = float((q - probe.tip) @ t)
+            if reach <= 0:
+                continue
+            r = probe.insert(reach)
+            if r.contacts:
+                return None  # met contour on the way
+            rot = side * (1 if float(t @ u) > 0 else -1)  # the tip turns towards the lid
+            return probe.swing(rot, float(np.arcsin(lateral / probe.length)))
+    return None

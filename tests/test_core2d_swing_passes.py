@@ -1,4 +1,4 @@
-"""Swing passes (:mod:`core2d.planner.swing_passes`, used by the revisit's ``_swing``): the
+"""Swing passes (:mod:`core2d.planner.swing_passes`, :func:`swing_lid` in the revisit): the
 points they aim at, the directions they enter along, and the ``deep_slot`` slice where a
 coarse sensor's lids along the slot's walls were read (Embree, a built-in scene), against
 the same run without them; a fine sensor makes none."""
@@ -9,6 +9,7 @@ import pytest
 import shapely
 
 import core2d.planner.revisit as revisit
+import core2d.planner.swing_passes as swing_passes
 import meshes
 import slicer
 from core2d import SensorModel, sense_slice
@@ -18,7 +19,7 @@ from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
 
 COARSE = Resolution.of(1.0, noise=0.3, taxel=0.25)  # W2 distance 2.52 eps
-SWING, SWING_PASS = revisit._swing, revisit.swing_pass  # before any test patches them
+SWING, SWING_PASS = swing_passes.swing_lid, swing_passes.swing_pass  # unpatched
 
 
 def test_the_targets_are_the_middles_of_the_widest_gaps_each_at_most_twice():
@@ -68,8 +69,8 @@ def _deep_slot(monkeypatch, noise, taxel, seed, rule=True):
         pieces.extend(run.result.w2[before:])
         return out
 
-    monkeypatch.setattr(revisit, "swing_pass", counted)
-    monkeypatch.setattr(revisit, "_swing", kept)
+    monkeypatch.setattr(swing_passes, "swing_pass", counted)
+    monkeypatch.setattr(revisit, "swing_lid", kept)
     mesh = meshes.load("deep_slot")
     eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
     cut = slicer.slice_mesh(mesh, axis="z", count=8)[5]

@@ -43,7 +43,8 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    at most 2 eps).
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`~core2d.planner.w3_checks.holds_lid`: a W3 lid never passes
-   through the solid) and if it closes
+   through the solid; one it cannot hold gets swing passes under a coarse noisy sensor,
+   :func:`~core2d.planner.swing_passes.swing_lid`) and if it closes
    a loop (:func:`~core2d.planner.w3_checks.closes_loop`): a chain of recorded pieces and such lids
    leads from B_i round to A_i, so A_i and B_i lie on one object and the lid
    bridges no islands (several hidden pockets of one loop close it
@@ -98,15 +99,14 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
-from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
-                                    steep_enough)
+from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
 from core2d.planner.mouths import end_chords, traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
-from core2d.planner.swing_passes import swing_pass, swing_targets
+from core2d.planner.swing_passes import swing_lid
 from core2d.planner.touched import Fill, Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
 from core2d.planner.thin_walls import behind_recorded
@@ -323,36 +323,6 @@ def revisit_one(run: Exploration, area):
                                        "+ the sensor's jitter" if part else ""), pieces=part)
 
 
-def _swing(run: Exploration, area) -> bool:
-    """Swing passes at a lid no straight pass crosses and the probe cannot hold
-    (:mod:`core2d.planner.swing_passes`; a coarse noisy sensor): True when their touches
-    closed it (W2 along them, or unknown with W2 where they touched)."""
-    if not applies(run.res) or resolves_half_eps(run.res):
-        return False
-    touches = Touches(run.res, np.asarray(area.a, float), np.asarray(area.b, float),
-                      lid_end_radius(run.res, area.dist))
-    limit = min(MAX_SWEEP, 2 * int(np.ceil(area.dist / run.res.w2_dist)))
-    made = 0
-    for fraction in swing_targets(touches, limit):
-        if not run.budget():
-            return False
-        r = swing_pass(run, area, fraction)
-        made += 1
-        for c in (r.contacts if r is not None else ()):  # the tip's or the rod's
-            touches.add(r.joint, c.point)
-    part = touches.pieces() if touches.points else None
-    if part is None:
-        return False
-    if "unknown" not in part:
-        run.close(area, "W2", f"{made} swing passes touched C_A^B along the lid, every "
-                              "neighbour within eps + the sensor's jitter", pieces=part)
-    else:
-        run.close(area, "unknown", f"no line from F crosses the lid and the probe cannot hold "
-                                   f"it; {made} swing passes: W2 where they touched C_A^B",
-                  pieces=part)
-    return True
-
-
 def revisit(run: Exploration) -> None:
     """Look at every deferred area of ``run`` again (see the module doc).
 
@@ -367,7 +337,7 @@ def revisit(run: Exploration) -> None:
             continue
         if holds_lid(run, area):
             run.waiting.append((area, why + "; the probe held the lid"))
-        elif not _swing(run, area):
+        elif not swing_lid(run, area):
             run.close(area, "unknown", why + ", but the probe cannot hold the lid")
     if not run.waiting:
         return

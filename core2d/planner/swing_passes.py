@@ -22,7 +22,12 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["swing_targets", "swing_pass"]
+from core2d.planner.grazing import resolves_half_eps
+from core2d.planner.pass_plan import MAX_SWEEP
+from core2d.planner.short_lids import lid_end_radius
+from core2d.planner.touched import Touches, applies
+
+__all__ = ["swing_lid", "swing_targets", "swing_pass"]
 
 
 def swing_targets(touches, limit: int):
@@ -86,3 +91,36 @@ def swing_pass(run, area, fraction: float):
             rot = side * (1 if float(t @ u) > 0 else -1)  # the tip turns towards the lid
             return probe.swing(rot, float(np.arcsin(lateral / probe.length)))
     return None
+
+
+def swing_lid(run, area) -> bool:
+    """Swing passes at a lid no straight pass crosses and the probe cannot hold (a coarse
+    noisy sensor; ``run`` an :class:`~core2d.planner.run.Exploration`): True when their
+    touches closed it -- W2 along them, or unknown with W2 where they lie within the W2
+    distance (:meth:`~core2d.planner.touched.Touches.pieces`); False when nothing was
+    touched, the sensor resolves eps/2 (a fine sensor gained nothing from them: σ 0.1 eps
+    over six seeds, case runs 192 -> 191) or the budget ran out."""
+    if not applies(run.res) or resolves_half_eps(run.res):
+        return False
+    touches = Touches(run.res, np.asarray(area.a, float), np.asarray(area.b, float),
+                      lid_end_radius(run.res, area.dist))
+    limit = min(MAX_SWEEP, 2 * int(np.ceil(area.dist / run.res.w2_dist)))
+    made = 0
+    for fraction in swing_targets(touches, limit):
+        if not run.budget():
+            return False
+        r = swing_pass(run, area, fraction)
+        made += 1
+        for c in (r.contacts if r is not None else ()):  # the tip's or the rod's
+            touches.add(r.joint, c.point)
+    part = touches.pieces() if touches.points else None
+    if part is None:
+        return False
+    if "unknown" not in part:
+        run.close(area, "W2", f"{made} swing passes touched C_A^B along the lid, every "
+                              "neighbour within eps + the sensor's jitter", pieces=part)
+    else:
+        run.close(area, "unknown", f"no line from F crosses the lid and the probe cannot hold "
+                                   f"it; {made} swing passes: W2 where they touched C_A^B",
+                  pieces=part)
+    return True

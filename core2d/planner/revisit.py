@@ -7,10 +7,11 @@ say that the recorded postures leave no pass, not that none exists. Once
 nothing else is left, every deferred area A_iB_i is looked at again against
 the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
-1. C_A^B has meanwhile been traced through other areas -> closed as traced
-   (with W2 chords over what the chain hops:
-   :func:`~core2d.planner.mouths.traced_gaps`); so is a lid lying along contour recorded from B_i to A_i (a traced wall
-   read backwards, :func:`reversed_lid`).
+1. C_A^B has meanwhile been traced through other areas -> closed as traced;
+   so is a lid lying along contour recorded from B_i to A_i (a traced wall
+   read backwards, :func:`reversed_lid`). An end farther than eps from the
+   recorded contour is joined to it by a W2 chord
+   (:func:`~core2d.planner.mouths.traced_gaps`).
 2. The lid could be a W3 lid only if it crosses no recorded contour
    (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
    contour farther than eps/2 from its touched ends (:func:`proof_lines`)

@@ -17,8 +17,9 @@ recorded itself; it never sees the contour. Per unknown area A_iB_i:
    Fig. 12(c) split for a one-sided start).
 
 An area whose contour C_A^B has meanwhile been traced through other areas
-(:meth:`KnownContour.covers`) is closed as traced; the gaps the chain hops are
-written W2 (:func:`~core2d.planner.mouths.traced_gaps`). A dead end -- no pass, or
+(:meth:`KnownContour.covers`) is closed as traced; an end A_i or B_i farther than
+eps from the recorded contour is joined to it by a W2 chord
+(:func:`~core2d.planner.mouths.traced_gaps`). A dead end -- no pass, or
 a pass that finds no new contact -- never makes W3: the area is deferred,
 and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).

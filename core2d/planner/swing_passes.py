@@ -11,12 +11,13 @@ untouched (``deep_slot`` at sigma 0.3 eps with taxels 0.25 eps: 120 eps of the s
 missed contour, a quarter of it, lay behind such lids on the study's own seeds).
 
 The probe reaches such a wall the way the bisection does (§4.2.2 (i)): it is inserted
-along a line parallel to the lid, ``off`` in front of it on F's side, until its tip is
-abreast of a point of the lid, and swung about its joint towards V_i until the tip
-touches (or has passed the lid by the W2 distance). Each touch goes to the lid's
-:class:`~core2d.planner.touched.Touches`, as a straight pass's would; a new contact
-behind the lid splits it. The points aimed at are the middles of the widest gaps the
-touches leave (A_i and B_i included), as :class:`~core2d.planner.touched.Fill` aims.
+along a line parallel to the lid (or tilted a few degrees), the same-contact radius beside
+it, until its tip is abreast of a point of the lid, and swung about its joint towards the
+lid until it touches (or the tip has passed the lid by the W2 distance). Each contact,
+the tip's or the rod's, goes to the lid's :class:`~core2d.planner.touched.Touches`, as a
+straight pass's would; none splits the lid (splitting at new ones, measured in an earlier
+form, gained nothing over six sensor seeds: docs/notes/noise.md). The points aimed at are the middles of the widest gaps the touches leave
+(A_i and B_i included), as :class:`~core2d.planner.touched.Fill` aims.
 """
 from __future__ import annotations
 
@@ -62,8 +63,8 @@ def _directions(u):
 
 def swing_pass(run, area, fraction: float):
     """One swing pass at ``fraction`` of the lid; the reading after the swing, or None
-    when no free line parallel to the lid leads abreast of that point, or the
-    insertion met contour before it got there.
+    when no free line along the lid (tilted by :data:`TILTS`) leads abreast of that
+    point, or the insertion met contour before it got there.
 
     The line runs ``off`` = the same-contact radius in front of the lid, on F's side
     first, then (a lid read a hair inside the wall, V_i facing the free side) on V_i's;

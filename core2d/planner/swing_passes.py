@@ -26,7 +26,7 @@ import numpy as np
 from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.pass_plan import MAX_SWEEP
 from core2d.planner.short_lids import lid_end_radius
-from core2d.planner.touched import Touches, applies
+from core2d.planner.touched import Touches, applies, gap_key
 
 __all__ = ["swing_lid", "swing_targets", "swing_pass"]
 
@@ -37,14 +37,12 @@ def swing_targets(touches, limit: int):
     the gaps are read again after every pass)."""
     tried: dict[tuple[float, float], int] = {}
     for _ in range(limit):
-        gaps = touches.open_gaps()
-        pick = next(((lo, hi) for _, lo, hi in gaps
-                     if tried.get((round(lo, 6), round(hi, 6)), 0) < 2), None)
-        if pick is None:
+        gap = touches.widest_untried(tried)
+        if gap is None:
             return
-        key = (round(pick[0], 6), round(pick[1], 6))
+        key = gap_key(*gap)
         tried[key] = tried.get(key, 0) + 1
-        yield (pick[0] + pick[1]) / 2
+        yield (gap[0] + gap[1]) / 2
 
 
 TILTS = np.radians([0.0, 2.0, -2.0, 4.0, -4.0, 8.0, -8.0])

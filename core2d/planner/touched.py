@@ -51,7 +51,12 @@ import numpy as np
 from core2d.planner.grazing import crosses_lid
 from core2d.resolution import Resolution
 
-__all__ = ["Touches", "Fill", "applies"]
+__all__ = ["Touches", "Fill", "applies", "gap_key"]
+
+
+def gap_key(lo: float, hi: float) -> tuple[float, float]:
+    """A gap's ends along the lid, rounded: the key of how often it was aimed at."""
+    return round(lo, 9), round(hi, 9)
 
 
 def applies(res: Resolution) -> bool:
@@ -136,6 +141,12 @@ class Touches:
         return sorted(((float(gaps[i]), float(along[i]), float(along[i + 1])) for i in wide),
                       reverse=True)
 
+    def widest_untried(self, tried: dict, most: int = 2) -> tuple[float, float] | None:
+        """``(from, to)`` of the widest open gap (:meth:`open_gaps`) that ``tried`` (a gap's
+        :func:`gap_key` -> times aimed at) holds fewer than ``most`` times; None if none."""
+        return next(((lo, hi) for _, lo, hi in self.open_gaps()
+                     if tried.get(gap_key(lo, hi), 0) < most), None)
+
     def middle_touched(self) -> bool:
         """Is some kept contact farther than the end radius from both ends?"""
         return any(min(np.hypot(*(p - self.a)), np.hypot(*(p - self.b))) > self.end_radius
@@ -208,14 +219,11 @@ class Fill:
         t = self.touches
         if self.spent >= self.cap or not t.middle_touched() or t.closes():
             return None
-        for _, lo, hi in t.open_gaps():
-            key = (round(lo, 9), round(hi, 9))
-            if self.tried.get(key, 0) >= 2:
-                continue
-            again = self.aim.toward(0.5 * (lo + hi))
-            if again is None:
-                return None
-            self.tried[key] = self.tried.get(key, 0) + 1
-            self.spent += 1
-            return again
-        return None
+        gap = t.widest_untried(self.tried)
+        again = None if gap is None else self.aim.toward(0.5 * (gap[0] + gap[1]))
+        if again is None:
+            return None
+        key = gap_key(*gap)
+        self.tried[key] = self.tried.get(key, 0) + 1
+        self.spent += 1
+        return again

@@ -5,7 +5,10 @@ made with the same arguments at two commits. For every sensor level both hold:
 
 * slice runs whose reachable coverage within eps/2 + 2 sigma went up, down, or stayed,
   and how many runs' motions changed (a change that leaves a level alone leaves them all);
-* per group, the pooled coverage and the total motions, before -> after;
+* per group, the pooled coverage and the total motions, before -> after, each change with
+  its 95 % interval from a paired bootstrap over the slice runs, and a sign test of the
+  runs that went up against those that went down (:mod:`bench.paired`: an interval that
+  holds 0 is a change the sensor's lottery alone could make);
 * case runs (cases x sensor seeds, as ``sensor_study`` judges them) meeting each target
   of the level, before -> after.
 
@@ -27,6 +30,7 @@ import csv
 import sys
 from pathlib import Path
 
+from bench.paired import pooled_change, sign_test
 from bench.sensor_study import coverage_target, per_case
 
 __all__ = ["read_rows", "compare", "main"]
@@ -71,14 +75,30 @@ def _key(r) -> tuple:
     return r["group"], r["name"], r["noise"], r["taxel"], r["sensor_seed"]
 
 
-def _pooled(rows) -> dict:
-    """{group: (coverage within eps/2 + 2 sigma, length weighted; total motions)}."""
+def _pooled(before, after) -> dict:
+    """{group: (coverage change, motions change)} of paired runs (:func:`pooled_change`:
+    coverage within eps/2 + 2 sigma, length weighted; total motions, relative)."""
     out = {}
-    for r in rows:
-        cov, reach, mot = out.get(r["group"], (0.0, 0.0, 0))
-        out[r["group"]] = (cov + r["covered_length_sensor"], reach + r["reachable_length"],
-                           mot + r["motions"])
-    return {g: (c / r if r > 0 else 1.0, m) for g, (c, r, m) in sorted(out.items())}
+    for g in sorted({r["group"] for r in before}):
+        pairs = [(x, y) for x, y in zip(before, after) if x["group"] == g]
+        col = {k: ([x[k] for x, _ in pairs], [y[k] for _, y in pairs])
+               for k in ("covered_length_sensor", "motions")}
+        reach = [x["reachable_length"] for x, _ in pairs]
+        out[g] = (pooled_change(*col["covered_length_sensor"], weight=reach),
+                  pooled_change(*col["motions"], relative=True))
+    return out
+
+
+def _interval(c, scale=1.0, digits=4, unit="") -> str:
+    """The 95 % interval of the change ``c`` as text ("" when the runs were too few)."""
+    if c.low != c.low:  # too few runs
+        return ""
+    return f", 95 % interval {c.low * scale:+.{digits}f} .. {c.high * scale:+.{digits}f}{unit}"
+
+
+def _count(x: float) -> int:
+    """A pooled total (motions) as the integer it is."""
+    return int(round(x))
 
 
 def _met(rows, target) -> dict:
@@ -94,11 +114,11 @@ def _met(rows, target) -> dict:
 
 def _block(before, after, target, indent="  ") -> list[str]:
     lines = []
-    pa, pb = _pooled(before), _pooled(after)
-    for g in sorted(set(pa) | set(pb)):
-        (ca, ma), (cb, mb) = pa.get(g, (float("nan"), 0)), pb.get(g, (float("nan"), 0))
-        lines.append(f"{indent}{g}: coverage {ca:.4f} -> {cb:.4f}, motions {ma} -> {mb}"
-                     f" ({(mb / ma - 1) * 100 if ma else float('nan'):+.1f} %)")
+    for g, (cov, mot) in _pooled(before, after).items():
+        lines.append(f"{indent}{g}: coverage {cov.before:.4f} -> {cov.after:.4f} "
+                     f"({cov.change:+.4f}{_interval(cov)}), motions {_count(mot.before)} -> "
+                     f"{_count(mot.after)} ({mot.change * 100:+.1f} %"
+                     f"{_interval(mot, 100, 1, ' %')})")
     if before and "ratio" in before[0]:
         ma, mb = _met(before, target), _met(after, target)
         lines.append(indent + "; ".join(f"{k} {ma[k]} -> {mb[k]}" for k in ma))
@@ -119,7 +139,8 @@ def compare(before: list[dict], after: list[dict]) -> str:
         target = coverage_target(noise, taxel)
         lines.append(f"sigma {noise:g} eps, taxel {taxel:g} eps: {len(ks)} slice runs, "
                      f"coverage up {up}, down {down}, same {len(ks) - up - down}; "
-                     f"motions changed in {moved}")
+                     f"motions changed in {moved}; up against down: sign test p = "
+                     f"{sign_test(up, down):.2g}")
         rows_a, rows_b = [a[k] for k in ks], [b[k] for k in ks]
         lines += _block(rows_a, rows_b, target)
         repeats = sorted({r.get("repeat", 0) for r in rows_b})

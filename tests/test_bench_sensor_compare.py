@@ -1,8 +1,10 @@
 """``python -m bench.sensor_compare`` on hand-made sensor-study rows."""
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
+from bench.paired import pooled_change, sign_test
 from bench.sensor_compare import compare, main, read_rows
 from bench.sensor_study import write_csv
 
@@ -63,3 +65,41 @@ def test_bad_input_is_one_line_and_status_2(csvs, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 3 and all(line.startswith("sensor_compare: ") for line in err)
     assert "line 4" in err[2]
+
+
+def test_the_lottery_interval_holds_zero_for_redrawn_runs_and_not_for_a_shift():
+    """40 slice runs re-drawn (each moves by the lottery, no bias): the coverage interval
+    holds 0 and the sign test finds nothing; the same runs all raised by 0.01: it does
+    not, and the sign test rejects "up and down equally likely"."""
+    rng = np.random.default_rng(7)
+    before = rng.uniform(0.95, 1.0, 40) * 100.0
+    redrawn = before + rng.normal(0.0, 1.0, 40)  # the lottery: +-0.01 of coverage
+    reach = np.full(40, 100.0)
+    same = pooled_change(before, redrawn, weight=reach)
+    assert same.holds_zero() and same.low < 0 < same.high
+    shifted = pooled_change(before, redrawn + 1.0, weight=reach)  # + 0.01 on every run
+    assert not shifted.holds_zero() and shifted.low > 0.005
+    up = int((redrawn > before).sum())
+    assert sign_test(up, 40 - up) > 0.05 and sign_test(40, 0) < 1e-6
+
+
+def test_motions_change_is_relative_and_its_interval_brackets_it():
+    rng = np.random.default_rng(3)
+    before = rng.integers(1000, 3000, 30).astype(float)
+    after = before * 0.9 * rng.uniform(0.97, 1.03, 30)
+    c = pooled_change(before, after, relative=True)
+    assert abs(c.change - (after.sum() / before.sum() - 1)) < 1e-12
+    assert c.low <= c.change <= c.high and c.high < -0.05  # about -10 %, not 0
+    few = pooled_change(before[:5], after[:5], relative=True)
+    assert np.isnan(few.low) and np.isnan(few.high)  # too few runs to resample
+    with pytest.raises(ValueError):
+        pooled_change(before, after[:-1])
+
+
+def test_compare_prints_the_intervals_and_the_sign_test(csvs):
+    before = read_rows(csvs("before.csv", _study([0.97, 0.99, 0.97, 0.99])))
+    after = read_rows(csvs("after.csv", _study([0.99, 0.99, 0.96, 0.97])))
+    text = compare(before, after)
+    assert "up against down: sign test p = 1" in text  # 1 up, 2 down
+    # 8 runs per level and group: too few for an interval, so none is printed
+    assert "95 % interval" not in text

@@ -54,10 +54,11 @@ LEVELS = ((0.03, 0.0), (0.1, 0.0), (0.3, 0.0), (1.0, 0.0), (0.0, 0.25), (0.3, 0.
 GROUPS = ("outlines", "scenes", "meshes")
 
 
-def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]:
+def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) -> list[dict]:
     """Rows of one slice: the noiseless run, then every level once per sensor seed
     ``seed + 1000 j`` (j < ``seeds``; j = 0 is the case's own seed), each with its
-    ``sensor_seed`` and ``ratio`` (motions over the noiseless run's)."""
+    ``sensor_seed`` and ``ratio`` (motions over the noiseless run's); ``keyed``: the
+    sensor's draws keyed by reading (:class:`core2d.SensorModel`'s common random numbers)."""
     from core2d import SensorModel, sense_slice
     from core2d.resolution import Resolution
     from core2d.truth.metrics import sensor_metrics, slice_metrics
@@ -71,7 +72,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]
     rows = []
     runs = [(0.0, 0.0, 0)] + [(n, t, j) for n, t in levels for j in range(seeds)]
     for noise, taxel, j in runs:
-        sensor = SensorModel.of_eps(eps, noise, taxel, seed + 1000 * j)
+        sensor = SensorModel.of_eps(eps, noise, taxel, seed + 1000 * j, keyed=keyed)
         res = sense_slice(contact, ws, eps, max_motions=budget, sensor=sensor)
         m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples, resolved=resolved)
         m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
@@ -102,7 +103,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1) -> list[dict]
     return rows
 
 
-def _outline_case(kind, seed, levels, budget, seeds=1):
+def _outline_case(kind, seed, levels, budget, seeds=1, keyed=False):
     from outlines import outline
 
     from slicer import ExactContact
@@ -111,10 +112,10 @@ def _outline_case(kind, seed, levels, budget, seeds=1):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget, seeds)
+    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget, seeds, keyed)
 
 
-def _mesh_case(source, count, index, levels, budget, seeds=1):
+def _mesh_case(source, count, index, levels, budget, seeds=1, keyed=False):
     import meshes
     import slicer
 
@@ -126,7 +127,7 @@ def _mesh_case(source, count, index, levels, budget, seeds=1):
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     return _score(loops, cut.contact("embree"), (center, radius + eps), eps, levels, index,
-                  budget, seeds)
+                  budget, seeds, keyed)
 
 
 def cases(args):
@@ -183,10 +184,10 @@ def _quiet_repeats() -> None:
 
 
 def _run(job):
-    group, name, fn, a, levels, budget, seeds = job
+    group, name, fn, a, levels, budget, seeds, keyed = job
     t0 = time.perf_counter()
     try:
-        rows = fn(*a, levels, budget, seeds)
+        rows = fn(*a, levels, budget, seeds, keyed)
     except Exception as exc:  # a crash is a finding, reported, not fatal
         return [{"group": group, "name": name, "error": f"{type(exc).__name__}: {exc}"[:200]}]
     for r in rows:
@@ -235,6 +236,10 @@ def main(argv=None) -> int:
     p.add_argument("--seeds", type=int, default=1,
                    help="sensor seeds per case and level (default 1: the case's seed; "
                    "more: + 1000, + 2000, ...; the noiseless run once)")
+    p.add_argument("--keyed-noise", action="store_true",
+                   help="each reading's noise keyed by its true posture (common random "
+                   "numbers: two planners compared with it differ only where their motions "
+                   "do; see core2d.sim.sensor)")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
     p.add_argument("--csv", type=Path, default=None,
                    help="also write one row per case and level to this CSV file")
@@ -249,7 +254,8 @@ def main(argv=None) -> int:
     only = {x.strip() for x in args.only.split(",") if x.strip()}
     if args.seeds < 1:
         p.error("--seeds is at least 1")
-    jobs = [(g, n, fn, a, levels, args.budget, args.seeds) for g, n, fn, a in cases(args)
+    jobs = [(g, n, fn, a, levels, args.budget, args.seeds, args.keyed_noise)
+            for g, n, fn, a in cases(args)
             if not only or n.split(":")[0] in only]
     print(f"sensor study: {len(jobs)} cases x {len(levels) * args.seeds + 1} runs, "
           f"{args.jobs} jobs",

@@ -73,6 +73,19 @@ def resolves_half_eps(res: Resolution) -> bool:
     return 0.0 < res.jitter <= res.eps / 2.0 - res.tol
 
 
+def sweep_length(res: Resolution) -> float:
+    """The length whose half spaces the revisit's sweep passes
+    (:func:`~core2d.planner.pass_plan.sweep`): eps, the paper's resolution, for perfect
+    sensing and a sensor that resolves eps/2; the W2 distance eps + jitter for a coarser
+    one. Two of its readings of one point lie up to the jitter apart (1.52 eps at sigma
+    0.3 eps with taxels 0.25 eps), so passes eps/2 apart land on what it reads as one
+    contact. Measured at that level (8 slices, six keyed sensor seeds,
+    docs/notes/noise.md): motions -7 to -13 % per group, coverage within the lottery but
+    more slice runs down than up; with the swing passes into the touches' gaps, which it
+    makes room for, coverage as before or higher and motions -5 to -10 %."""
+    return res.eps if resolves_half_eps(res) else res.w2_dist
+
+
 def end_radius(res: Resolution) -> float:
     """Within what distance of A_i or B_i a pass's contact is that end again,
     not a new contact on C_{A_i}^{B_i} (Theorem 1's pass, the §4.4 escape,

@@ -100,14 +100,15 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
-from core2d.planner.grazing import Blockers, beyond_ends, end_radius, steep_enough
+from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, steep_enough,
+                                    sweep_length)
 from core2d.planner.mouths import end_chords, traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
 from core2d.planner.regions import cross
 from core2d.planner.short_lids import lid_end_radius, on_map
-from core2d.planner.swing_passes import swing_lid
+from core2d.planner.swing_passes import swing_gaps, swing_lid
 from core2d.planner.touched import Fill, Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
 from core2d.planner.thin_walls import behind_recorded
@@ -259,7 +260,8 @@ def revisit_one(run: Exploration, area):
     if lines:  # the spread passes, then (a W3 candidate) the sweep: each planned when next
         sources = [((p, d, None) for p, d in spread(lines, area.a, area.b))]
         if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
-            sources.append((p, d, None) for p, d in sweep(lines, area.dist, run.eps)
+            sources.append((p, d, None) for p, d in sweep(lines, area.dist,
+                                                          sweep_length(run.res))
                            if steep_enough(run.res, area.a, area.b, d))
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
@@ -315,6 +317,9 @@ def revisit_one(run: Exploration, area):
     if escaped:
         return run.close(area, "open", note + "; one left through it: an opening to F")
     part = touches.pieces() if touches is not None else None
+    if touches is not None and (part is None or "unknown" in part) and not (
+            candidate and ends_only):  # a coarse sensor: swings into the touches' gaps
+        part = swing_gaps(run, area, touches)
     if part is not None and "unknown" not in part:
         return run.close(area, "W2", note + "; they touched C_A^B along the lid, every "
                          "neighbour within eps + the sensor's jitter", pieces=part)

@@ -80,7 +80,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    * with a noisy sensor, the passes' contacts that were no new contact (on recorded
      contour, at an ancestor's split, near an end) but touched C_A^B at the lid -- the
      planned passes', then those aimed into the gaps between their touches
-     (:class:`~core2d.planner.touched.Fill`) -- sample it finely enough -- no two
+     (:class:`~core2d.planner.touched.Fill`), then, under a coarse sensor, swing passes
+     into the gaps still open (:func:`~core2d.planner.swing_passes.swing_gaps`) --
+     sample it finely enough -- no two
      neighbours along the lid, A_i and B_i included, as far
      apart as eps + jitter, the middle touched -> **W2** along their block means
      (:mod:`~core2d.planner.touched`): what the refused splits would have made;

@@ -18,6 +18,10 @@ the tip's or the rod's, goes to the lid's :class:`~core2d.planner.touched.Touche
 straight pass's would; none splits the lid (splitting at new ones, measured in an earlier
 form, gained nothing over six sensor seeds: docs/notes/noise.md). The points aimed at are the middles of the widest gaps the touches leave
 (A_i and B_i included), as :class:`~core2d.planner.touched.Fill` aims.
+
+The same swings serve a lid whose straight passes did cross it but found nothing new
+(:func:`swing_gaps`, after the revisit's passes and the Fill): they reach the gaps near
+its ends that grazing straight passes leave.
 """
 from __future__ import annotations
 

@@ -70,12 +70,13 @@ def test_perfect_sensing_writes_nothing():
         assert gaps == []
 
 
-def _outline_run(monkeypatch, kind, seed, sensor_seed, off=None):
+def _outline_run(monkeypatch, kind, seed, sensor_seed, off=None, keyed=False):
     """``kind`` outline ``seed`` at sigma 0.3 eps, taxels 0.25 eps: the result, the chords
     written, the loops. ``off``: "traced" -- areas traced through other areas write no
     chords (:func:`~core2d.planner.mouths.traced_gaps`); "lies_on" -- lids lying along
     recorded contour write none (:func:`~core2d.planner.mouths.end_chords` in the
-    revisit)."""
+    revisit). ``keyed``: the sensor's noise keyed by reading (a run that planner changes
+    elsewhere leave alone reads the same)."""
     from outlines import outline
     from slicer.contact.exact import ExactContact
 
@@ -98,30 +99,30 @@ def _outline_run(monkeypatch, kind, seed, sensor_seed, off=None):
     pts = np.concatenate(loops)
     ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
     res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.3, 0.25, sensor_seed))
+                      sensor=SensorModel.of_eps(1.0, 0.3, 0.25, sensor_seed, keyed=keyed))
     return res, chords, loops
 
 
-@pytest.mark.parametrize("kind, seed, sensor_seed, rule", [
-    ("comb", 0, 0, "traced"),    # 0.887 -> 0.972
-    ("star", 1, 1, "lies_on"),   # 0.943 -> 0.990
+@pytest.mark.parametrize("kind, seed, sensor_seed, rule, keyed", [
+    ("comb", 0, 0, "traced", False),    # 0.887 -> 0.972
+    ("star", 1, 4, "lies_on", True),    # 0.935 -> 1.000
 ])
 def test_the_chords_show_the_openings_the_closures_hopped(monkeypatch, kind, seed, sensor_seed,
-                                                          rule):
+                                                          rule, keyed):
     """Read on these runs (sigma 0.3 eps, taxels 0.25 eps). ``comb`` seed 0: an area
     closed as traced whose chain started across the mouth of a slot narrower than the W2
     distance (eps + jitter, 2.52 eps), within the same-contact radius of A_i. ``star``
-    seed 1: a lid closed as lying along recorded contour with an end 1.66 eps from it,
-    at the mouth of a slot 1.5 eps wide. Without the chords those slots were in neither
-    W1, W2 nor an unknown lid; the chords approximate them (§3.1 at the sensor's
-    resolution). Reachable coverage within eps/2 + 2 sigma as commented. The
+    seed 1 (keyed noise, sensor seed 4): lids closed as lying along recorded contour with
+    an end farther than eps from it; their chords span openings narrower than the W2
+    distance. Without the chords those openings were in neither W1, W2 nor an unknown
+    lid; the chords approximate them (§3.1 at the sensor's resolution). Reachable coverage within eps/2 + 2 sigma as commented. The
     motions are the same: the chords go into the result, not into the map."""
     import shapely
 
     from core2d.truth.metrics import sensor_metrics
 
-    without, _, loops = _outline_run(monkeypatch, kind, seed, sensor_seed, off=rule)
-    with_, chords, _ = _outline_run(monkeypatch, kind, seed, sensor_seed)
+    without, _, loops = _outline_run(monkeypatch, kind, seed, sensor_seed, off=rule, keyed=keyed)
+    with_, chords, _ = _outline_run(monkeypatch, kind, seed, sensor_seed, keyed=keyed)
     assert chords
     assert with_.stats.motions == without.stats.motions
     m0 = sensor_metrics(loops, without, 1.0, 0.3)

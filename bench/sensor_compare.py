@@ -66,7 +66,7 @@ def read_rows(path: Path) -> list[dict]:
 def _value(key, text):
     if key in _TEXT:
         return text
-    if key == "budget_hit":
+    if key in ("budget_hit", "keyed"):
         return text == "True"
     return int(float(text)) if key in _INT else float(text)
 
@@ -131,6 +131,10 @@ def compare(before: list[dict], after: list[dict]) -> str:
     b = {_key(r): r for r in after}
     common = [k for k in b if k in a]
     lines = [f"{len(common)} slice runs in both ({len(a)} before, {len(b)} after)"]
+    keyed = [{bool(r.get("keyed", False)) for r in rows} for rows in (before, after)]
+    if keyed[0] != keyed[1]:  # one study keyed, the other not: every run is a new draw
+        lines.append("warning: one study's noise is keyed by reading (--keyed-noise) and the "
+                     "other's is not, so no slice run is paired")
     for noise, taxel in sorted({k[2:4] for k in common}):
         ks = [k for k in common if k[2:4] == (noise, taxel)]
         up = sum(b[k]["coverage_sensor"] > a[k]["coverage_sensor"] + 1e-9 for k in ks)

@@ -88,7 +88,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) 
                                      samples=samples,
                                      resolved=band)["covered_resolvable_length_sensor"]
         rows.append({"noise": noise, "taxel": taxel, "sensor_seed": seed + 1000 * j,
-                     "repeat": j, "band_length": float(weights[reach & band].sum()),
+                     "repeat": j, "keyed": keyed, "band_length": float(weights[reach & band].sum()),
                      "covered_band_length_sensor": covered, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
             "w2_credit_length_sensor",
@@ -258,7 +258,7 @@ def main(argv=None) -> int:
             for g, n, fn, a in cases(args)
             if not only or n.split(":")[0] in only]
     print(f"sensor study: {len(jobs)} cases x {len(levels) * args.seeds + 1} runs, "
-          f"{args.jobs} jobs",
+          f"{args.jobs} jobs" + (", keyed noise" if args.keyed_noise else ""),
           file=sys.stderr)
     t0 = time.perf_counter()
     rows = []

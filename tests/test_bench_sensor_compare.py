@@ -103,3 +103,13 @@ def test_compare_prints_the_intervals_and_the_sign_test(csvs):
     assert "up against down: sign test p = 1" in text  # 1 up, 2 down
     # 8 runs per level and group: too few for an interval, so none is printed
     assert "95 % interval" not in text
+
+
+def test_a_keyed_study_against_one_that_is_not_is_flagged(csvs):
+    rows = _study([0.97, 0.99, 0.97, 0.99])
+    keyed = [dict(r, keyed=True) for r in rows]
+    plain = read_rows(csvs("plain.csv", [dict(r, keyed=False) for r in rows]))
+    both = read_rows(csvs("keyed.csv", keyed))
+    assert "warning" not in compare(both, both) and "warning" not in compare(plain, plain)
+    assert "no slice run is paired" in compare(plain, both)
+    assert "no slice run is paired" not in compare(read_rows(csvs("old.csv", rows)), plain)

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import math
 import sys
 from pathlib import Path
 
@@ -91,7 +92,7 @@ def _pooled(before, after) -> dict:
 
 def _interval(c, scale=1.0, digits=4, unit="") -> str:
     """The 95 % interval of the change ``c`` as text ("" when the runs were too few)."""
-    if c.low != c.low:  # too few runs
+    if math.isnan(c.low):  # too few runs
         return ""
     return f", 95 % interval {c.low * scale:+.{digits}f} .. {c.high * scale:+.{digits}f}{unit}"
 

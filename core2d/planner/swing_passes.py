@@ -116,7 +116,7 @@ def swing_gaps(run, area, touches):
     """After a lid's straight passes found nothing new (the revisit's passes and the
     :class:`~core2d.planner.touched.Fill`'s): swing passes into the gaps their touches
     left, under a sensor that does not resolve eps/2; the lid's pieces then
-    (:meth:`~core2d.planner.touched.Touches.pieces`), or None when nothing was touched.
+    (:meth:`~core2d.planner.touched.Touches.pieces`), or None when nothing of it is W2.
 
     Straight passes meet a wall the lid lies along where a grazing line meets it, not
     where they cross the lid, so their touches leave gaps wider than the W2 distance

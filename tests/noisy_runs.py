@@ -19,17 +19,19 @@ __all__ = ["coverages", "scene_slice"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
-              taxel: float = 0.0) -> np.ndarray:
+              taxel: float = 0.0, keyed: bool = False) -> np.ndarray:
     """(len(seeds),) reachable coverage within eps/2 + 2 ``noise`` (``noise``
     and the taxel spacing ``taxel`` in eps) of ``loops`` sensed in the
     workspace ``ws`` (exact backend), one run per sensor seed; asserts the
-    per-seed targets (module doc) and a noiseless coverage >= 0.99."""
+    per-seed targets (module doc) and a noiseless coverage >= 0.99; ``keyed``:
+    the sensor's draws keyed by reading (``SensorModel(keyed=True)``)."""
     contact = ExactContact(loops)
     base = sense_slice(contact, ws, eps)
     assert sensor_metrics(loops, base, eps, 0.0)["coverage_sensor"] >= 0.99
     covs = []
     for seed in seeds:
-        res = sense_slice(contact, ws, eps, sensor=SensorModel.of_eps(eps, noise, taxel, seed))
+        res = sense_slice(contact, ws, eps,
+                          sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed))
         m = sensor_metrics(loops, res, eps, noise * eps)
         assert not res.stats.budget_hit, f"seed {seed}"
         assert m["precision_sensor"] >= 0.98, f"seed {seed}: {m['precision_sensor']:.4f}"
@@ -39,10 +41,11 @@ def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
     return np.array(covs)
 
 
-def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int):
+def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
+                keyed: bool = False):
     """Sense z-slice ``index`` of 8 of the built-in scene ``name`` (Embree,
     eps = diagonal / 200) with the sensor (``noise`` and ``taxel`` in eps,
-    ``seed``), as the sensor study does; returns the result and
+    ``seed``; ``keyed`` draws), as the sensor study does; returns the result and
     :func:`~core2d.truth.metrics.sensor_metrics` of it."""
     import meshes
     import slicer
@@ -53,5 +56,5 @@ def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int):
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
-                      sensor=SensorModel.of_eps(eps, noise, taxel, seed))
+                      sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed))
     return res, sensor_metrics(loops, res, eps, noise * eps)

@@ -33,6 +33,8 @@ MODULES = [
     "core2d.planner.tip_bound",
     "core2d.planner.thin_walls",
     "core2d.planner.openings",
+    "core2d.planner.pass_contacts",
+    "core2d.planner.pass_plan",
     "core2d.planner.budget",
     "core2d.truth.reachability",
     "core2d.truth.metrics",
@@ -53,6 +55,8 @@ MODULES = [
     "recon3d.cli.printing",
     "recon3d.score.report",
     "recon3d.cli.signals",
+    "bench.paired",
+    "bench.sensor_surface",
 ]
 
 

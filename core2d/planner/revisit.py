@@ -26,6 +26,10 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
    new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
    everything recorded, and behind the lid or near it: :func:`in_reach`;
+   under a coarse noisy sensor a contact met in front of the lid whose
+   children's lids would cross recorded contour is held back while a
+   spread's worth more passes look for C_A^B:
+   :func:`~core2d.planner.pass_contacts.splits_across_record`;
    with a noisy sensor the radii widen by the jitter, at most to the middle
    band eps/2 wide that a short lid keeps:
    :func:`~core2d.planner.short_lids.lid_end_radius`)
@@ -106,9 +110,9 @@ from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, steep_eno
                                     sweep_length)
 from core2d.planner.mouths import end_chords, traced_gaps
 from core2d.planner.openings import soften_passed
-from core2d.planner.pass_plan import MAX_SWEEP, PassPlan, spread, sweep
+from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
-from core2d.planner.regions import cross
+from core2d.planner.pass_contacts import in_reach, splits_across_record
 from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.swing_passes import swing_gaps, swing_lid
 from core2d.planner.touched import Fill, Touches, applies
@@ -147,33 +151,6 @@ def _near_end(run: Exploration, area, point, radius=None) -> bool:
     return min(np.hypot(*(point - area.a)), np.hypot(*(point - area.b))) <= radius
 
 
-def in_reach(area, joint, point) -> bool:
-    """Can a pass's contact ``point`` lie on C_A^B? Either the probe reached
-    it through the lid (its segment from the joint to the contact crosses
-    A_iB_i: the contact is behind the lid, where Theorem 1's pass looks), or
-    it lies within Dist(A_i, B_i) / 2 of the lid. A contact the probe met in
-    front of the lid, farther from it than half its length, is contour the
-    probe reached from F without the lid -- a stretch of another wall the
-    record has a gap in (a noisy trace leaves such gaps) -- and splitting
-    A_iB_i there would lay the children's lids across material (measured
-    on the ``star`` outline of ``tests/outlines.py``, seed 0, noise 0.3,
-    taxel 0.25 eps: 301 instead of 448 eps of reported lids deeper than eps
-    inside material over seeds 0-2). With perfect sensing the record has no
-    such gaps and the contacts in front of a lid graze it (within 0.1
-    Dist(A_i, B_i) on the middle slices of 9 built-in scenes); the test is
-    applied with a noisy sensor only, so the paper's flow is unchanged."""
-    a, b = np.asarray(area.a, float), np.asarray(area.b, float)
-    p, q = np.asarray(joint, float), np.asarray(point, float)
-    ab, pq = b - a, q - p
-    den = float(cross(ab, pq))
-    if den != 0.0:
-        s, t = float(cross(p - a, pq)) / den, float(cross(p - a, ab)) / den
-        if 0.0 <= s <= 1.0 and 0.0 <= t <= 1.0:
-            return True
-    u = float(np.clip((q - a) @ ab / max(float(ab @ ab), 1e-300), 0.0, 1.0))
-    return float(np.hypot(*(q - a - u * ab))) <= area.dist / 2
-
-
 def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     """Is ``point`` new: farther than eps/2 from A_i and B_i and from every
     contact an ancestor was split at by a pass
@@ -196,6 +173,14 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
                 np.hypot(*(a - point)) <= same and np.hypot(*(b - area.b)) <= same):
             return False
     return True
+
+
+def _split(run: Exploration, area, c, pose_c):
+    """Split A_iB_i at the pass's contact C into (A_i, C) and (C, B_i)."""
+    d, seen = area.depth + 1, area.seen + (c,)
+    return run.children(area, [
+        Area(area.a, c, area.pose_a, pose_c, area.index, "revisit", d, seen=seen),
+        Area(c, area.b, pose_c, area.pose_b, area.index, "revisit", d, seen=seen)])
 
 
 def on_recorded(run: Exploration, area) -> bool:
@@ -269,7 +254,7 @@ def revisit_one(run: Exploration, area):
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,
                                     margin=run.res.tip_zone, min_gap=run.angle_tol)
         sources = [((p, d, None) for p, d in spread(back, area.b, area.a))] if back else []
-    ends_only, escaped = True, False
+    ends_only, escaped, held = True, False, None
     blockers = Blockers.of(run.res, 2.5 * probe.radius)  # passes stopped in front of the lid
     plan = PassPlan(sources)
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
@@ -279,6 +264,8 @@ def revisit_one(run: Exploration, area):
             if touches is not None else None)  # then passes into the touches' gaps
     while (planned := plan.next()) is not None or (
             fill is not None and not escaped and (planned := fill.next()) is not None):
+        if held and area.tries - held[2] >= MAX_TRIES:
+            break  # a spread's worth of passes after it: it splits the lid (below)
         point, direction, shift = planned
         filling = plan.exhausted
         if not run.budget():
@@ -293,10 +280,9 @@ def revisit_one(run: Exploration, area):
         if c is not None:  # read again where the probe stands (reread_pass)
             c, pose_c = reread_pass(probe, r)
         if c is not None and _new_contact(run, area, c, pose_c.joint):
-            d, seen = area.depth + 1, area.seen + (c,)
-            kids = [Area(area.a, c, area.pose_a, pose_c, area.index, "revisit", d, seen=seen),
-                    Area(c, area.b, pose_c, area.pose_b, area.index, "revisit", d, seen=seen)]
-            return run.children(area, kids)
+            if not splits_across_record(run.res, known, area, pose_c.joint, c):
+                return _split(run, area, c, pose_c)
+            held = held or (c, pose_c, area.tries + 1)  # split there if no later pass finds C_A^B
         area.tries += 1
         if c is not None and touches is not None:
             touches.add(pose_c.joint, c)
@@ -312,6 +298,8 @@ def revisit_one(run: Exploration, area):
         again = None if c is None else aim.landed(point, direction, c, shift)
         if again is not None:  # a grazing pass landed off the middle: its line shifted
             plan.push(again)
+    if held:  # no pass found C_A^B: the contact met in front splits the lid after all
+        return _split(run, area, *held[:2])
     note = f"{area.tries} passes through the lid found nothing new"
     if not plan.count:
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "

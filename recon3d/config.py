@@ -144,6 +144,15 @@ class RunConfig:
         "results do not depend on --jobs)",
         doc=(("seed of the sensor noise; each slice has its own stream (seed, family, "
               "plane), so the results do not depend on `--jobs`"),))
+    keyed_noise: bool = param(
+        False, switch=True, shown_default="off", check=check_flag,
+        help="draw each reading's noise from its true posture (a key) instead of one stream "
+        "per slice: two planners then meet the same draws where they read the same posture",
+        doc=(("keyed sensor noise (common random numbers): each reading's draws come from a "
+              "generator keyed by the seed, the probe's true posture and how often it was "
+              "read before, so a planner change that adds one motion does not re-draw every "
+              "later reading; for comparing two planners run by run (statistically the same "
+              "sensor)"),))
     torque_threshold: float = param(
         0.0, parse=float, metavar="H", shown_default="0",
         check=lambda v, n: positive(v, n, allow_zero=True),

@@ -71,3 +71,26 @@ def test_a_keyed_slice_run_is_reproducible_and_finishes():
     assert runs[0].stats.motions == runs[1].stats.motions < 5000
     assert not runs[0].stats.budget_hit
     assert all(np.array_equal(p, q) for p, q in zip(runs[0].w1, runs[1].w1))
+
+
+@pytest.mark.filterwarnings("ignore:eps 1.5 is")
+def test_recon3d_run_keys_the_noise_of_every_slice():
+    """``keyed_noise`` (``--keyed-noise``) reaches the workers' sensor models and
+    metrics.json: a keyed run repeats itself, draws otherwise than the one-stream
+    run of the same seed, and says so in its sensor record."""
+    import trimesh
+
+    import recon3d
+    from recon3d.sensing.worker import SenseSettings
+
+    settings = SenseSettings((np.array([0.0, 0.0, 1.0]),), 2, 1.5, 0.075, "exact", 100, 4,
+                             noise=0.3, keyed=True)
+    assert settings.sensor(0, 1).keyed and not settings.sensor(0, 1).seed == 0
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    kw = dict(slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25, seed=1)
+    a, b = recon3d.run(box, keyed_noise=True, **kw), recon3d.run(box, keyed_noise=True, **kw)
+    plain = recon3d.run(box, **kw)
+    assert a.metrics["sensor"]["keyed"] and not plain.metrics["sensor"]["keyed"]
+    one = [s["detected_length"] for s in a.metrics["slices"]]
+    assert one == [s["detected_length"] for s in b.metrics["slices"]]
+    assert one != [s["detected_length"] for s in plain.metrics["slices"]]

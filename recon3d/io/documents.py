@@ -153,7 +153,8 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
     if cfg.noise or cfg.taxel or cfg.torque_threshold or cfg.torque_noise:  # absent: perfect
         doc["sensor"] = {"noise": float(cfg.noise), "taxel": float(cfg.taxel),
                          "seed": int(cfg.seed), "torque_threshold": float(cfg.torque_threshold),
-                         "torque_noise": float(cfg.torque_noise), "unit": "eps",
+                         "torque_noise": float(cfg.torque_noise),
+                         "keyed": bool(cfg.keyed_noise), "unit": "eps",
                          "metric_tol": "eps / 2 + 2 noise (the *_sensor metrics)"}
     if cfg.friction:  # absent: no friction, the paper's simulation
         doc["friction"] = float(cfg.friction)

@@ -66,7 +66,7 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
                              config.max_motions, config.bootstrap, config.method,
                              float(config.noise), float(config.taxel), int(config.seed),
                              float(config.friction), float(config.torque_threshold),
-                             float(config.torque_noise))
+                             float(config.torque_noise), bool(config.keyed_noise))
 
     def sense(tasks):
         return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress,

@@ -52,6 +52,7 @@ class SenseSettings:
     seed : int -- seed of the noise; slice (family, plane) draws from its own stream.
     friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`; 0: none).
     torque_threshold, torque_noise : float -- the torque sensor's, in eps.
+    keyed : bool -- keyed noise draws (:class:`core2d.SensorModel`'s ``keyed``).
     """
 
     axes: tuple
@@ -68,13 +69,14 @@ class SenseSettings:
     friction: float = 0.0
     torque_threshold: float = 0.0
     torque_noise: float = 0.0
+    keyed: bool = False
 
     def sensor(self, family: int, index: int) -> SensorModel | None:
         """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
         if not (self.noise or self.taxel or self.torque_threshold or self.torque_noise):
             return None
         return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed,
-                                  self.torque_threshold, self.torque_noise).reseeded(
+                                  self.torque_threshold, self.torque_noise, self.keyed).reseeded(
             family, index)
 
     @property

@@ -1,0 +1,43 @@
+"""``python -m bench.sensor_surface --before``: the paired change of F@1 % between two
+3D sensor studies, on hand-made rows (the runs themselves are bench work)."""
+from __future__ import annotations
+
+import numpy as np
+
+from bench.sensor_surface import paired_lines
+
+
+def _rows(shift=0.0, keyed=True, seeds=4, scenes=("a", "b", "c")):
+    """Noiseless rows and sigma 0.3 + T 0.25 rows per scene and seed; F@1 % spread
+    over the runs, plus ``shift`` on every noisy run."""
+    rng = np.random.default_rng(5)
+    rows = [{"scene": s, "noise": 0.0, "taxel": 0.0, "seed": 0, "keyed": False,
+             "fscore_1%": 1.0} for s in scenes]
+    rows += [{"scene": s, "noise": 0.3, "taxel": 0.25, "seed": j, "keyed": keyed,
+              "fscore_1%": float(0.8 + 0.15 * rng.random() + shift)}
+             for s in scenes for j in range(seeds)]
+    return rows
+
+
+def test_a_shift_on_every_run_is_outside_the_lottery():
+    (line,) = paired_lines(_rows(), _rows(shift=0.01))
+    assert "12 paired runs" in line and "(+0.0100, 95 % interval +0.0100 .. +0.0100)" in line
+    assert "up 12, down 0" in line
+
+
+def test_runs_pair_by_scene_level_and_seed_not_by_order():
+    before = _rows()
+    after = [dict(r) for r in reversed(_rows())]  # the same runs in another order
+    after[0]["fscore_1%"] += 0.05  # one run moved
+    (line,) = paired_lines(before, after)
+    assert "up 1, down 0" in line and "+0.0042" in line  # 0.05 over 12 runs
+    assert "noiseless" not in line and "sigma 0.3 eps, taxel 0.25 eps" in line
+
+
+def test_keyed_against_one_stream_is_flagged_and_missing_scores_skipped():
+    after = _rows(keyed=False)
+    after[3]["fscore_1%"] = None  # a run without a surface score
+    lines = paired_lines(_rows(), after)
+    assert lines[0].startswith("warning: one study's noise is keyed")
+    assert "11 paired runs" in lines[1]
+    assert len(paired_lines(_rows(), _rows(shift=0.01))) == 1  # both keyed: no warning

@@ -119,3 +119,26 @@ def test_a_chord_no_posture_crosses_keeps_its_fill_and_a_touch_at_an_end_is_no_c
     reg = slice_region([outline], [], [], [chord], snap=1e-6, free=at_ends, margin=0.05)
     assert "unknown" in [p.kind for p in reg.pieces]
     assert reg.geometry.difference(truth).area > 5.0
+
+
+def test_unknown_chords_into_the_material_do_not_open_the_traced_contour():
+    """The square traced all round but for a gap of 2 at its left side, and two unknown
+    chords from the gap's ends into the material, meeting at (5, 5) (lids a noisy
+    revisit's splits laid through material, ``gear`` z4 at sigma 0.3 eps). The chords take
+    the gap's free ends, so no bridge closes the gap and the triangle between them is open
+    to the outside: without the region of the sensed pieces alone it is left out. Unknown
+    chords add what they close, never take away what the traced contour closes."""
+    traced = _chain([[0.0, 4.0], [0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0],
+                     [0.0, 6.0]])
+    chords = [_chain([[0.0, 6.0], [5.0, 5.0]]), _chain([[5.0, 5.0], [0.0, 4.0]])]
+    reg = slice_region([traced], [], [], chords, snap=1e-6, jitter=0.3)
+    assert reg.area == pytest.approx(100.0)
+    assert sorted(p.kind for p in reg.pieces) == ["W1", "unknown", "unknown"]
+    # a perfect sensor's region is the pieces' (step 3b is a noisy sensor's)
+    assert slice_region([traced], [], [], chords, snap=1e-6).area == pytest.approx(95.0)
+    # an unknown chord across a pocket's mouth still closes the pocket
+    pocket = _chain([[6.0, 10.0], [6.0, 6.0], [4.0, 6.0], [4.0, 10.0]])
+    rim = _chain([[4.0, 10.0], [0.0, 10.0], [0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [6.0, 10.0]])
+    lid = slice_region([rim, pocket], [], [], [_chain([[4.0, 10.0], [6.0, 10.0]])], snap=1e-6,
+                       jitter=0.3)
+    assert lid.area == pytest.approx(100.0)

@@ -274,3 +274,16 @@ def test_deep_slot_at_sigma_03_keeps_its_slot_open(monkeypatch):
     slot = 4 * 4.0 * 37.5  # four slices of a slot about 4 x 37.5
     assert extra[1] < 0.5 * extra[0]
     assert missed[1] <= missed[0] + 0.02 * slot
+
+
+def test_a_region_that_comes_as_a_collection_keeps_its_polygons():
+    """A region given as a collection (faces beside a stray line) is carved like its faces:
+    a difference returns such a collection, and it once came back as an empty region."""
+    box = shapely.box(-3, -3, 4, 4)
+    region = shapely.GeometryCollection([box, shapely.LineString([[5.0, 5.0], [6.0, 6.0]])])
+    everywhere = np.array([shapely.box(-5, -5, 6, 6)])
+    piece = np.array([[0.0, 0.0], [1.0, 0.0]])
+    got = carve(region, [piece], everywhere, SNAP, JITTER, 2.0)
+    want = carve(box, [piece], everywhere, SNAP, JITTER, 2.0)
+    assert got.geom_type in ("Polygon", "MultiPolygon") and got.area > 0
+    assert got.symmetric_difference(want).area < 1e-9

@@ -24,6 +24,17 @@ opening with no segment, a piece can be stray. The rule, in order:
    filled (the probe cannot see them), stray pieces outside add at most a
    sliver between the piece and its bridge, and pieces inside the material
    change nothing.
+3b. **the sensed pieces' own region** (a noisy sensor only) -- the region
+   that the W1 / W2 / W3 pieces close without the unknown chords (steps 1 - 3)
+   is added. An unknown chord ends where its area's A_i and B_i were read,
+   and a noisy revisit's split can lay one through material, from one wall
+   to another; its ends then take the free ends that the bridges would have
+   joined, the traced contour stays open there, and the faces between such
+   chords are lost (``gear`` z4 of 8 at sigma 0.3 eps: a third of the
+   section). Unknown chords add what they close, never take away what the
+   traced contour closes. Without noise the step is left out: it would
+   bridge free ends the chords kept apart (``comb``: F@1 % 0.897 -> 0.870),
+   and only a noisy sensor's region is carved by what the probe swept (step 4).
 4. **carve** (a noisy sensor only) -- what the probe's motions swept, away from the
    sensed pieces, is cut from the region (:func:`recon3d.surface.sweep.carve`): the
    noisy pieces' loose ends are bridged closest first, and a bridge across a slot's
@@ -156,7 +167,8 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     margin : float, optional -- how far from a chord's ends a posture must cross it
         (default ``snap``).
     jitter : float -- how far two readings of one point may lie apart (a noisy sensor's,
-        :attr:`core2d.resolution.Resolution.jitter`); above 0, with ``swept``, step 4.
+        :attr:`core2d.resolution.Resolution.jitter`); above 0: step 3b, and with ``swept``
+        step 4.
     swept : (s,) shapely geometries, optional -- the areas the probe's motions swept
         (:func:`recon3d.surface.sweep.swept_areas`); with ``jitter`` above 0, cut from the
         region away from the sensed pieces (step 4); None: no step 4.
@@ -170,24 +182,32 @@ def slice_region(w1, w2, w3, unknown, snap: float, free=None,
     if free is not None and len(free) and len(unknown):
         gone = _pierced(unknown, free, snap if margin is None else margin)
         unknown = [c for c, g in zip(unknown, gone) if not g]
-    pieces = _raw_pieces(w1, w2, w3, unknown)
+    pieces, geom = _closed(_raw_pieces(w1, w2, w3, unknown), snap)
+    if not pieces:
+        return SliceRegion(shapely.Polygon(), ())
+    if jitter > 0 and any(p.kind == "unknown" for p in pieces):  # step 3b
+        geom = shapely.union(geom, _closed(_raw_pieces(w1, w2, w3, []), snap)[1])
+    if jitter > 0 and swept is not None:
+        sensed = [p.points for p in pieces if p.kind in ("W1", "W2", "W3")]
+        geom = carve(geom, sensed, swept, snap, jitter, close)
+    return SliceRegion(geom, tuple(pieces))
+
+
+def _closed(pieces, snap: float) -> tuple[list[Piece], shapely.Geometry]:
+    """Steps 1 - 3: the pieces snapped and bridged, and the union of their bounded faces."""
     pieces, node, where = _snap(pieces, snap)
     pieces = pieces + _bridges(node, where)
     if not pieces:
-        return SliceRegion(shapely.Polygon(), ())
+        return [], shapely.Polygon()
     coords = np.concatenate([p.points for p in pieces])
     lines = shapely.linestrings(coords, indices=np.repeat(np.arange(len(pieces)),
                                                           [len(p.points) for p in pieces]))
     # fixed-precision noding (grid = snap / 8) is robust where floating noding fails
     noded = shapely.union_all(lines, grid_size=snap / 8)
-    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(noded)))
-    geom = shapely.union_all(faces)
+    geom = shapely.union_all(shapely.get_parts(shapely.polygonize(shapely.get_parts(noded))))
     if geom.geom_type not in ("Polygon", "MultiPolygon"):  # empty collection
         geom = shapely.Polygon()
-    if jitter > 0 and swept is not None:
-        sensed = [p.points for p in pieces if p.kind in ("W1", "W2", "W3")]
-        geom = carve(geom, sensed, swept, snap, jitter, close)
-    return SliceRegion(geom, tuple(pieces))
+    return pieces, geom
 
 
 def _pierced(chords, free, margin: float) -> np.ndarray:

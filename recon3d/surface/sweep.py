@@ -185,4 +185,7 @@ def carve(geometry, sensed, swept, snap: float, jitter: float, close: float):
     if close > 0:
         free = shapely.buffer(free, -close, quad_segs=_QUAD)
     cut = geometry.difference(free.intersection(inner))
+    if cut.geom_type == "GeometryCollection":  # a difference can leave lines beside the faces
+        cut = shapely.union_all([g for g in shapely.get_parts(cut)
+                                 if g.geom_type in ("Polygon", "MultiPolygon")])
     return cut if cut.geom_type in ("Polygon", "MultiPolygon") else shapely.Polygon()

@@ -39,22 +39,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from core2d.planner.grazing import resolves_half_eps
+from core2d.planner.grazing import crosses_lid, resolves_half_eps
 from core2d.planner.known import KnownContour
-from core2d.planner.regions import cross
 from core2d.resolution import Resolution
 
 __all__ = ["in_reach", "splits_across_record"]
-
-
-def _through(a, b, joint, point) -> bool:
-    """Does the probe's segment from ``joint`` to ``point`` cross the lid ab?"""
-    ab, pq = b - a, point - joint
-    den = float(cross(ab, pq))
-    if den == 0.0:
-        return False
-    s, t = float(cross(joint - a, pq)) / den, float(cross(joint - a, ab)) / den
-    return 0.0 <= s <= 1.0 and 0.0 <= t <= 1.0
 
 
 def in_reach(area, joint, point) -> bool:
@@ -78,7 +67,7 @@ def in_reach(area, joint, point) -> bool:
     """
     a, b = np.asarray(area.a, float), np.asarray(area.b, float)
     p, q = np.asarray(joint, float), np.asarray(point, float)
-    if _through(a, b, p, q):
+    if crosses_lid(a, b, p, q):
         return True
     ab = b - a
     u = float(np.clip((q - a) @ ab / max(float(ab @ ab), 1e-300), 0.0, 1.0))
@@ -130,6 +119,6 @@ def splits_across_record(res: Resolution, known: KnownContour, area, joint, poin
         return False
     a, b = np.asarray(area.a, float), np.asarray(area.b, float)
     q = np.asarray(point, float)
-    if _through(a, b, np.asarray(joint, float), q):
+    if crosses_lid(a, b, joint, q):
         return False
     return known.crosses(a, q, res.near) or known.crosses(q, b, res.near)

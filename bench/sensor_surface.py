@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import math
 import statistics
 import subprocess
 import sys
@@ -88,7 +89,7 @@ def paired_lines(before: list[dict], after: list[dict]) -> list[str]:
         c = pooled_change(list(x), list(y), weight=[1.0] * len(x))
         up = sum(b > a + 1e-12 for a, b in pairs)
         down = sum(b < a - 1e-12 for a, b in pairs)
-        ci = ("too few runs for an interval" if c.low != c.low
+        ci = ("too few runs for an interval" if math.isnan(c.low)
               else f"95 % interval {c.low:+.4f} .. {c.high:+.4f}")
         lines.append(f"sigma {level[0]:g} eps, taxel {level[1]:g} eps: {len(pairs)} paired runs, "
                      f"mean F@1 % {c.before:.4f} -> {c.after:.4f} ({c.change:+.4f}, {ci}); "

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from bench.sensor_surface import paired_lines
 
@@ -41,3 +42,49 @@ def test_keyed_against_one_stream_is_flagged_and_missing_scores_skipped():
     assert lines[0].startswith("warning: one study's noise is keyed")
     assert "11 paired runs" in lines[1]
     assert len(paired_lines(_rows(), _rows(shift=0.01))) == 1  # both keyed: no warning
+
+
+def test_the_command_pairs_its_runs_with_an_earlier_study(tmp_path, monkeypatch, capsys):
+    """``--seeds 2 --keyed-noise --csv`` then ``--before``: every noisy level runs once per
+    seed, keyed, the rows record seed and keying, and the second study prints the paired
+    change against the first (the runs themselves stubbed: a row per call)."""
+    import csv
+
+    import bench.sensor_surface as ss
+
+    calls = []
+
+    def row(scene, slices, noise, taxel, seed=0, keyed=False, shift=0.0):
+        calls.append((scene, noise, taxel, seed, keyed))
+        return {"scene": scene, "noise": noise, "taxel": taxel, "seed": seed,
+                "keyed": bool(keyed and (noise or taxel)),
+                "fscore_1%": 0.9 - noise / 10 + 0.01 * seed + shift, "coverage": 0.99,
+                "unknown": 0, "bridges": 0, "motions": 100}
+
+    monkeypatch.setattr(ss, "_row", row)
+    first = tmp_path / "first.csv"
+    args = ["--scenes", "a,b", "--levels", "0.3:0.25", "--seeds", "2", "--keyed-noise"]
+    assert ss.main(args + ["--csv", str(first)]) == 0
+    assert calls == [(s, n, t, k, kd) for s in "ab"
+                     for n, t, k, kd in ((0.0, 0.0, 0, False), (0.3, 0.25, 0, True),
+                                         (0.3, 0.25, 1, True))]
+    rows = list(csv.DictReader(first.open()))
+    assert [(r["seed"], r["keyed"]) for r in rows[:3]] == [("0", "False"), ("0", "True"),
+                                                           ("1", "True")]
+    capsys.readouterr()
+    monkeypatch.setattr(ss, "_row", lambda *a, **k: row(*a, **k, shift=0.02))
+    assert ss.main(args + ["--before", str(first)]) == 0
+    out = capsys.readouterr().out
+    assert "4 paired runs" in out and "(+0.0200," in out and "up 4, down 0" in out
+    assert "warning" not in out
+
+
+def test_an_unreadable_before_file_is_a_one_line_error(tmp_path, capsys):
+    import bench.sensor_surface as ss
+
+    with pytest.raises(SystemExit) as exc:
+        ss.main(["--scenes", "a", "--before", str(tmp_path / "missing.csv")])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].endswith("--before: cannot read " + str(tmp_path / "missing.csv")
+                            + ": No such file or directory")

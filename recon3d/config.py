@@ -368,4 +368,7 @@ def validate(mesh: trimesh.Trimesh, config: RunConfig, spelling: str = "key") ->
         count = "max_slices" if _auto(config) else "slices"
         check_slice_spacing(getattr(config, count), mesh, config.axes, res.eps,
                             name(_BY_KEY[count]), name(_BY_KEY["force"]))
+    if config.keyed_noise and not (config.noise or config.torque_noise):
+        notes.append(f"{name(_BY_KEY['keyed_noise'])} has no effect: the sensor draws no noise "
+                     f"({name(_BY_KEY['noise'])} and {name(_BY_KEY['torque_noise'])} are 0)")
     return [n for n in notes if n]

@@ -94,3 +94,19 @@ def test_recon3d_run_keys_the_noise_of_every_slice():
     one = [s["detected_length"] for s in a.metrics["slices"]]
     assert one == [s["detected_length"] for s in b.metrics["slices"]]
     assert one != [s["detected_length"] for s in plain.metrics["slices"]]
+
+
+@pytest.mark.parametrize("spelling, name", [("key", "keyed_noise"), ("flag", "--keyed-noise")])
+def test_keyed_noise_without_noise_is_a_warning(spelling, name):
+    """Keying draws that are never made changes nothing: the user is told, not stopped."""
+    import trimesh
+
+    from recon3d.config import validate
+    from recon3d.spellings import make_config
+
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    notes = validate(box, make_config(keyed_noise=True, taxel=0.25), spelling)
+    assert any(n.startswith(f"{name} has no effect") for n in notes), notes
+    for noisy in (dict(noise=0.3), dict(torque_noise=0.1)):
+        notes = validate(box, make_config(keyed_noise=True, **noisy), spelling)
+        assert not any("no effect" in n for n in notes), notes

@@ -44,7 +44,7 @@ def _row(scene: str, slices: int, noise: float, taxel: float, seed: int = 0,
     surf = tot.get("surface") or {}
     pieces = [p for fam in res.recon.regions for reg in fam for p in reg.pieces]
     return {"scene": scene, "noise": noise, "taxel": taxel, "seed": seed,
-            "keyed": bool(keyed and (noise or taxel)),
+            "keyed": bool(keyed and noise),  # taxels alone draw nothing to key
             "fscore_1%": (surf.get("fscore") or {}).get("1%"),
             "coverage": tot.get("coverage_sensor", tot.get("coverage")),
             "unknown": sum(p.kind == "unknown" for p in pieces),

@@ -54,13 +54,16 @@ LEVELS = ((0.03, 0.0), (0.1, 0.0), (0.3, 0.0), (1.0, 0.0), (0.0, 0.25), (0.3, 0.
 GROUPS = ("outlines", "scenes", "meshes")
 
 
-def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) -> list[dict]:
+def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False,
+           reads="auto") -> list[dict]:
     """Rows of one slice: the noiseless run, then every level once per sensor seed
     ``seed + 1000 j`` (j < ``seeds``; j = 0 is the case's own seed), each with its
     ``sensor_seed`` and ``ratio`` (motions over the noiseless run's); ``keyed``: the
-    sensor's draws keyed by reading (:class:`core2d.SensorModel`'s common random numbers)."""
+    sensor's draws keyed by reading (:class:`core2d.SensorModel`'s common random numbers);
+    ``reads``: reads averaged per reading point, 'auto' as ``recon3d run``
+    (:func:`core2d.resolution.repeated_reads`), recorded in each row."""
     from core2d import SensorModel, sense_slice
-    from core2d.resolution import Resolution
+    from core2d.resolution import Resolution, repeated_reads
     from core2d.truth.metrics import sensor_metrics, slice_metrics
     from core2d.truth.reachability import reachable_samples
     from core2d.truth.resolvable import resolvable
@@ -72,12 +75,13 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) 
     rows = []
     runs = [(0.0, 0.0, 0)] + [(n, t, j) for n, t in levels for j in range(seeds)]
     for noise, taxel, j in runs:
-        sensor = SensorModel.of_eps(eps, noise, taxel, seed + 1000 * j, keyed=keyed)
+        n = repeated_reads(1.0, noise, taxel) if reads == "auto" else int(reads)
+        sensor = SensorModel.of_eps(eps, noise, taxel, seed + 1000 * j, keyed=keyed, reads=n)
         res = sense_slice(contact, ws, eps, max_motions=budget, sensor=sensor)
         m = slice_metrics(loops, res, eps, spacing=eps / 4, samples=samples, resolved=resolved)
         m.update(sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
                                 resolved=resolved))
-        w2 = Resolution.of(eps, noise=sensor.noise, taxel=sensor.taxel).w2_dist
+        w2 = Resolution.of(eps, noise=sensor.read_noise, taxel=sensor.taxel).w2_dist
         if w2 == eps:  # no jitter: the part eps resolves
             band, covered = resolved, m["covered_resolvable_length_sensor"]
         else:
@@ -88,7 +92,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) 
                                      samples=samples,
                                      resolved=band)["covered_resolvable_length_sensor"]
         rows.append({"noise": noise, "taxel": taxel, "sensor_seed": seed + 1000 * j,
-                     "repeat": j, "keyed": keyed, "band_length": float(weights[reach & band].sum()),
+                     "repeat": j, "keyed": keyed, "reads": n, "band_length": float(weights[reach & band].sum()),
                      "covered_band_length_sensor": covered, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
             "w2_credit_length_sensor",
@@ -103,7 +107,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False) 
     return rows
 
 
-def _outline_case(kind, seed, levels, budget, seeds=1, keyed=False):
+def _outline_case(kind, seed, levels, budget, seeds=1, keyed=False, reads="auto"):
     from outlines import outline
 
     from slicer import ExactContact
@@ -112,10 +116,11 @@ def _outline_case(kind, seed, levels, budget, seeds=1, keyed=False):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget, seeds, keyed)
+    return _score(loops, ExactContact(loops), ws, 1.0, levels, seed, budget, seeds, keyed,
+                  reads)
 
 
-def _mesh_case(source, count, index, levels, budget, seeds=1, keyed=False):
+def _mesh_case(source, count, index, levels, budget, seeds=1, keyed=False, reads="auto"):
     import meshes
     import slicer
 
@@ -127,7 +132,7 @@ def _mesh_case(source, count, index, levels, budget, seeds=1, keyed=False):
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     return _score(loops, cut.contact("embree"), (center, radius + eps), eps, levels, index,
-                  budget, seeds, keyed)
+                  budget, seeds, keyed, reads)
 
 
 def cases(args):
@@ -184,10 +189,10 @@ def _quiet_repeats() -> None:
 
 
 def _run(job):
-    group, name, fn, a, levels, budget, seeds, keyed = job
+    group, name, fn, a, levels, budget, seeds, keyed, reads = job
     t0 = time.perf_counter()
     try:
-        rows = fn(*a, levels, budget, seeds, keyed)
+        rows = fn(*a, levels, budget, seeds, keyed, reads)
     except Exception as exc:  # a crash is a finding, reported, not fatal
         return [{"group": group, "name": name, "error": f"{type(exc).__name__}: {exc}"[:200]}]
     for r in rows:
@@ -240,6 +245,9 @@ def main(argv=None) -> int:
                    help="each reading's noise keyed by its true posture (common random "
                    "numbers: two planners compared with it differ only where their motions "
                    "do; see core2d.sim.sensor)")
+    p.add_argument("--reads", default="auto", metavar="N",
+                   help="sensor reads averaged at each reading point: 'auto' (default, as "
+                   "recon3d run: core2d.resolution.repeated_reads) or a number")
     p.add_argument("--jobs", type=int, default=2, help="processes (default 2)")
     p.add_argument("--csv", type=Path, default=None,
                    help="also write one row per case and level to this CSV file")
@@ -254,11 +262,13 @@ def main(argv=None) -> int:
     only = {x.strip() for x in args.only.split(",") if x.strip()}
     if args.seeds < 1:
         p.error("--seeds is at least 1")
-    jobs = [(g, n, fn, a, levels, args.budget, args.seeds, args.keyed_noise)
+    if args.reads != "auto" and not (args.reads.isdigit() and int(args.reads) >= 1):
+        p.error(f"--reads is 'auto' or a number >= 1 (got {args.reads!r})")
+    jobs = [(g, n, fn, a, levels, args.budget, args.seeds, args.keyed_noise, args.reads)
             for g, n, fn, a in cases(args)
             if not only or n.split(":")[0] in only]
     print(f"sensor study: {len(jobs)} cases x {len(levels) * args.seeds + 1} runs, "
-          f"{args.jobs} jobs" + (", keyed noise" if args.keyed_noise else ""),
+          f"{args.jobs} jobs, reads {args.reads}" + (", keyed noise" if args.keyed_noise else ""),
           file=sys.stderr)
     t0 = time.perf_counter()
     rows = []

@@ -71,6 +71,9 @@ class SenseStats:
     measure of the pulling strategy, since the guard keeps ``pushes`` at 0.
     ``jams`` counts the pushing steps that stuck under tip friction (the
     rod inside the friction cone, :mod:`core2d.sim.friction`); 0 without it.
+    ``sensor_reads`` counts the reads of a real sensor (reading points x the
+    reads averaged at each, :mod:`core2d.sim.sensor`); the paper's perfect
+    sensing takes none, and the key is then left out of :meth:`as_dict`.
     """
 
     motions: int = 0
@@ -85,6 +88,7 @@ class SenseStats:
     budget_hit: bool = False
     seconds: float = 0.0
     cast_seconds: float = 0.0
+    sensor_reads: int = 0
 
     def as_dict(self) -> dict:
         return {
@@ -98,7 +102,7 @@ class SenseStats:
             "escapes": int(self.escapes),
             "budget_hit": bool(self.budget_hit),
             "seconds": float(self.seconds),
-        }
+        } | ({"sensor_reads": int(self.sensor_reads)} if self.sensor_reads else {})
 
 
 @dataclass

@@ -264,3 +264,16 @@ def parse_slices(text: str):
         return int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected an integer or 'auto', got {text!r}") from None
+
+
+def check_reads(value, name: str):
+    """``reads``: 'auto' or an integer from 1 to ``core2d.resolution.MAX_READS``."""
+    # lazy: core2d's package loads the simulator (numba, shapely); the parser loads none of it
+    from core2d.resolution import MAX_READS
+
+    if value == "auto":
+        return value
+    n = at_least(value, name)
+    if n > MAX_READS:
+        raise InputError(f"{name} must be 'auto' or at most {MAX_READS} (got {n})")
+    return n

@@ -30,7 +30,8 @@ import slicer
 from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, InputError,
                             at_least, check_axes, check_backend, check_choice, check_eps,
                             check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
-                            check_slices, check_tol, parse_slices, positive, units_note)
+                            check_reads, check_slices, check_tol, parse_slices, positive,
+                            units_note)
 from recon3d.param import Param, param
 
 if TYPE_CHECKING:  # annotations only: the parser of recon3d loads no trimesh (--help)
@@ -153,6 +154,24 @@ class RunConfig:
               "read before, so a planner change that adds one motion does not re-draw every "
               "later reading; for comparing two planners run by run (statistically the same "
               "sensor)"),))
+    reads: int | Literal["auto"] = param(
+        "auto", parse=parse_slices, metavar="N", shown_default="`auto`", check=check_reads,
+        help="reads of the sensors averaged at each reading point (default auto: as many as "
+        "make two readings of one point resolve eps/2, else one; at most 64)",
+        doc=(("the robot reads its skin, joint and torque sensors N times where it stands "
+              "(after a motion, at each step of a compliant trace) and averages them: the "
+              "noise of the means is S / sqrt(N), the taxels' rounding stays; the planner is "
+              "told that noise"),
+             ("auto", "the fewest N that bring two readings of one point within eps/2 "
+              "(`core2d.resolution.repeated_reads`: 15 at `--noise 0.3 --taxel 0.25`, 1 at "
+              "`--noise 0.1`), else 1")))
+    read_time: float = param(
+        0.001, parse=float, metavar="S", shown_default="0.001",
+        check=lambda v, n: positive(v, n, allow_zero=True),
+        help="seconds per read of a noisy sensor for the robot time (default 0.001: a 1 kHz "
+        "skin)",
+        doc=(("seconds per read of a real sensor (reading points × `--reads`) for the robot "
+              "time; the paper's perfect sensing reads in no time"),))
     torque_threshold: float = param(
         0.0, parse=float, metavar="H", shown_default="0",
         check=lambda v, n: positive(v, n, allow_zero=True),
@@ -371,4 +390,8 @@ def validate(mesh: trimesh.Trimesh, config: RunConfig, spelling: str = "key") ->
     if config.keyed_noise and not (config.noise or config.torque_noise):
         notes.append(f"{name(_BY_KEY['keyed_noise'])} has no effect: the sensor draws no noise "
                      f"({name(_BY_KEY['noise'])} and {name(_BY_KEY['torque_noise'])} are 0)")
+    if config.reads not in ("auto", 1) and not (config.noise or config.torque_noise):
+        notes.append(f"{name(_BY_KEY['reads'])} has no effect: the sensor draws no noise "
+                     f"({name(_BY_KEY['noise'])} and {name(_BY_KEY['torque_noise'])} are 0)")
     return [n for n in notes if n]
+

@@ -36,13 +36,18 @@ COVERAGE_CLASSES = {0: "outside the slab", 1: "touched", 2: "reachable, missed",
 """Ground-truth coverage classes (:func:`recon3d.score.evaluate.coverage_mesh`)."""
 
 
-def robot_time(stats: dict, probe_speed: float, motion_overhead: float) -> float:
-    """Seconds: joint path / probe speed + motions x overhead.
+def robot_time(stats: dict, probe_speed: float, motion_overhead: float,
+               read_time: float = 0.0) -> float:
+    """Seconds: joint path / probe speed + motions x overhead + sensor reads x read time
+    (a real sensor's reads, ``sensor_reads`` of the stats; none with perfect sensing).
 
     >>> robot_time({"joint_path": 100.0, "motions": 10}, 20.0, 0.2)
     7.0
+    >>> robot_time({"joint_path": 100.0, "motions": 10, "sensor_reads": 3000}, 20.0, 0.2, 0.001)
+    10.0
     """
-    return float(stats["joint_path"] / probe_speed + stats["motions"] * motion_overhead)
+    return float(stats["joint_path"] / probe_speed + stats["motions"] * motion_overhead
+                 + stats.get("sensor_reads", 0) * read_time)
 
 
 @dataclass
@@ -140,6 +145,7 @@ class MeshRun:
     eps, tol : float -- the finest eps sensed and its contact resolution.
     probe_length : float -- link length (4 x (largest slice radius + first eps)).
     adaptive : dict or None -- what ``--slices auto`` decided (metrics.json ``adaptive``).
+    reads : int -- sensor reads averaged at each reading point (``--reads`` resolved).
     """
 
     name: str
@@ -152,6 +158,7 @@ class MeshRun:
     seconds: float = 0.0
     jobs: int = 1
     adaptive: dict | None = None
+    reads: int = 1
 
     @property
     def slices(self) -> list[SliceRun]:

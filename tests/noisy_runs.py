@@ -19,19 +19,21 @@ __all__ = ["coverages", "scene_slice"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
-              taxel: float = 0.0, keyed: bool = False) -> np.ndarray:
+              taxel: float = 0.0, keyed: bool = False, reads: int = 1) -> np.ndarray:
     """(len(seeds),) reachable coverage within eps/2 + 2 ``noise`` (``noise``
     and the taxel spacing ``taxel`` in eps) of ``loops`` sensed in the
     workspace ``ws`` (exact backend), one run per sensor seed; asserts the
     per-seed targets (module doc) and a noiseless coverage >= 0.99; ``keyed``:
-    the sensor's draws keyed by reading (``SensorModel(keyed=True)``)."""
+    the sensor's draws keyed by reading (``SensorModel(keyed=True)``); ``reads``: reads
+    averaged per reading point (``SensorModel(reads=...)``)."""
     contact = ExactContact(loops)
     base = sense_slice(contact, ws, eps)
     assert sensor_metrics(loops, base, eps, 0.0)["coverage_sensor"] >= 0.99
     covs = []
     for seed in seeds:
         res = sense_slice(contact, ws, eps,
-                          sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed))
+                          sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed,
+                                                    reads=reads))
         m = sensor_metrics(loops, res, eps, noise * eps)
         assert not res.stats.budget_hit, f"seed {seed}"
         assert m["precision_sensor"] >= 0.98, f"seed {seed}: {m['precision_sensor']:.4f}"

@@ -111,10 +111,16 @@ def test_the_band_leaves_out_a_slot_the_sensor_reads_as_w2():
                      [10 - w / 2, 10 - d], [10 - w / 2, 10], [0, 10]], dtype=float)
     assert Resolution.of(1.0, noise=0.3, taxel=0.25).w2_dist > w > 1.0
     rows = _score([loop], ExactContact([loop]), (np.array([10.0, 5.0]), 13.0), 1.0,
-                  ((0.3, 0.25),), 0, 5000, 1)
+                  ((0.3, 0.25),), 0, 5000, 1, reads=1)  # one read: the coarse sensor
     quiet, noisy = rows
     assert quiet["band_length"] == quiet["resolvable_length"]
     assert quiet["covered_band_length_sensor"] == quiet["covered_resolvable_length_sensor"]
     left_out = noisy["resolvable_length"] - noisy["band_length"]
+    assert noisy["reads"] == 1
     assert 2 * (d - 2.52 / 2 - 1.0) <= left_out <= 2 * d + w
     assert 0 <= noisy["covered_band_length_sensor"] <= noisy["band_length"]
+    # averaged as recon3d run does (15 reads): the W2 distance of the means, 1.44 eps < w
+    averaged = _score([loop], ExactContact([loop]), (np.array([10.0, 5.0]), 13.0), 1.0,
+                      ((0.3, 0.25),), 0, 5000, 1)[1]
+    assert averaged["reads"] == 15
+    assert averaged["resolvable_length"] - averaged["band_length"] < 0.5 * left_out

@@ -143,6 +143,10 @@ def _eps_bad(mesh):
     (["fig17_pocket", "--probe-speed", "0"], "--probe-speed"),
     (["fig17_pocket", "--motion-overhead", "-1"], "--motion-overhead"),
     (["fig17_pocket", "--max-motions", "0"], "--max-motions"),
+    (["fig17_pocket", "--noise", "0.3", "--reads", "0"], "--reads"),
+    (["fig17_pocket", "--noise", "0.3", "--reads", "65"], "--reads"),
+    (["fig17_pocket", "--noise", "0.3", "--reads", "some"], "--reads"),
+    (["fig17_pocket", "--noise", "0.3", "--read-time", "-1"], "--read-time"),
 ])
 def test_bad_input_is_one_line_exit_2_and_nothing_left(tmp_path, capsys, args, message):
     out = tmp_path / "out"

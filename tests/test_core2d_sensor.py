@@ -126,7 +126,8 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
     import recon3d
 
     box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
-    kw = dict(slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25)
+    kw = dict(slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25,
+              reads=1)  # one read per point: the sensor as stated (the default averages 15)
     a, b = recon3d.run(box, seed=1, **kw), recon3d.run(box, seed=1, **kw)
     c = recon3d.run(box, seed=2, **kw)
     total = a.metrics["total"]
@@ -134,6 +135,7 @@ def test_recon3d_run_records_the_sensor_and_reports_both_metrics():
     assert 0 < total["coverage"] <= total["coverage_sensor"] <= 1
     assert 0 < total["precision"] <= total["precision_sensor"] <= 1
     assert a.metrics["sensor"]["noise"] == 0.3 and a.metrics["sensor"]["seed"] == 1
+    assert a.metrics["sensor"]["reads"] == 1
     assert total["motions"] == b.metrics["total"]["motions"]
     assert a.metrics["slices"][0]["precise_length"] == b.metrics["slices"][0]["precise_length"]
     assert a.metrics["slices"][0]["detected_length"] != c.metrics["slices"][0]["detected_length"]

@@ -252,7 +252,8 @@ def test_deep_slot_at_sigma_03_keeps_its_slot_open(monkeypatch):
     (:mod:`core2d.planner.swing_passes`) and the W2 chords at the ends of areas closed as
     traced (:func:`core2d.planner.mouths.end_chords`): both line the slot's walls where
     unknown lids were, and leave the carve less to do (with them 203 -> 120 units², the
-    chords alone 293 -> 165). The slices here are those the carve was measured on."""
+    chords alone 293 -> 165). The slices here are those the carve was measured on: one
+    read per reading point (``reads=1``), the coarse sensor the carve is for."""
     import core2d.planner.mouths as mouths
     import core2d.planner.revisit as revisit
     import recon3d
@@ -260,7 +261,7 @@ def test_deep_slot_at_sigma_03_keeps_its_slot_open(monkeypatch):
     monkeypatch.setattr(revisit, "swing_lid", lambda run, area: False)
     monkeypatch.setattr(mouths, "end_chords", lambda known, a, b, res: [])
     monkeypatch.setattr(revisit, "end_chords", lambda known, a, b, res: [])
-    res = recon3d.run("deep_slot", slices=4, jobs=1, noise=0.3, taxel=0.25, seed=0)
+    res = recon3d.run("deep_slot", slices=4, jobs=1, noise=0.3, taxel=0.25, seed=0, reads=1)
     run = res.sensing
     lengths = closure_lengths(run.eps, run.tol, 0.3, 0.25)
     extra, missed = np.zeros(2), np.zeros(2)

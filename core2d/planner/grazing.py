@@ -70,7 +70,7 @@ __all__ = ["beyond_ends", "steep_enough", "resolves_half_eps", "end_radius", "cr
 def resolves_half_eps(res: Resolution) -> bool:
     """0 < jitter <= eps/2 - tol: a noisy sensor whose two readings of one
     point stay within the paper's same-point radius eps/2."""
-    return 0.0 < res.jitter <= res.eps / 2.0 - res.tol
+    return res.resolves_half_eps
 
 
 def sweep_length(res: Resolution) -> float:

@@ -75,8 +75,9 @@ class Probe:
         # the robot's stated resolution (the planner's: the sensor's data
         # sheet included) and the simulator's own, exact one (its searches,
         # settles and jump tests resolve the true geometry)
-        self.resolution = Resolution.of(eps, tol, model.noise, model.taxel,
-                                        model.torque_threshold, model.torque_noise)
+        # (the noise of the means of ``model.reads`` reads per reading point)
+        self.resolution = Resolution.of(eps, tol, model.read_noise, model.taxel,
+                                        model.torque_threshold, model.read_torque_noise)
         self.exact = res = Resolution.of(eps, tol)
         self.eps, self.tol = res.eps, res.tol
         self.length = float(length if length is not None else 4.0 * self.radius)
@@ -103,8 +104,9 @@ class Probe:
         return self.stats.motions
 
     def costs(self) -> SenseStats:
-        """A copy of the cost counters so far (motions, joint path, rays, pushes)."""
-        return SenseStats(**vars(self.stats))
+        """A copy of the cost counters so far (motions, joint path, rays, pushes,
+        sensor reads)."""
+        return SenseStats(**{**vars(self.stats), "sensor_reads": self.sensor.count})
 
     def note_phase(self, phase: str, area: int = -1) -> None:
         """The planner's phase hook: the bare probe ignores it

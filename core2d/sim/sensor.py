@@ -17,6 +17,13 @@ the simulator returns -- the planner sees only the degraded readings:
 * **joint readings** -- Gaussian noise on the joint position P (standard
   deviation ``noise``) and on the direction t (``noise / L`` radians, the
   same displacement at the tip): the joint position sensors' error.
+* **repeated reads** -- ``reads`` N: the robot reads its skin, joint sensors
+  and torque sensor N times at each reading point (a posture it stands in:
+  after a motion, at each micro-step of a compliant trace) and takes the
+  means. The mean of N independent Gaussian draws is one draw with the
+  standard deviation divided by sqrt(N), and that one draw is what the
+  simulator makes; the taxel's rounding is the same on every read and stays.
+  :func:`core2d.resolution.repeated_reads` picks N from the data sheet.
 * **torque sensor** -- the blocked-rotation readings of §3.2 (is a small
   rotation about the joint, moving the tip sideways by tol, blocked?). The
   simulator measures how deep the surface intrudes into that rotation,
@@ -72,6 +79,8 @@ class SensorModel:
     keyed : bool -- each reading's draws keyed by its true posture and how often that
         posture was read (common random numbers; see the module doc), instead of one
         stream of draws.
+    reads : int -- how many reads the robot averages at each reading point (1: one
+        read; see the module doc). The noise of the means is :attr:`read_noise`.
 
     >>> SensorModel.of_eps(2.0, noise=0.1, taxel=0.25).taxel
     0.5
@@ -83,15 +92,32 @@ class SensorModel:
     torque_threshold: float = 0.0
     torque_noise: float = 0.0
     keyed: bool = False
+    reads: int = 1
 
     @classmethod
     def of_eps(cls, eps: float, noise: float = 0.0, taxel: float = 0.0,
                seed: int = 0, torque_threshold: float = 0.0,
-               torque_noise: float = 0.0, keyed: bool = False) -> SensorModel:
+               torque_noise: float = 0.0, keyed: bool = False,
+               reads: int = 1) -> SensorModel:
         """The model with ``noise``, ``taxel`` and the torque figures given as
         multiples of eps."""
         return cls(float(noise) * eps, float(taxel) * eps, int(seed),
-                   float(torque_threshold) * eps, float(torque_noise) * eps, bool(keyed))
+                   float(torque_threshold) * eps, float(torque_noise) * eps, bool(keyed),
+                   int(reads))
+
+    @property
+    def read_noise(self) -> float:
+        """noise / sqrt(reads): the standard deviation of a reading point's means.
+
+        >>> SensorModel(noise=0.3, reads=9).read_noise
+        0.1
+        """
+        return self.noise / math.sqrt(self.reads)
+
+    @property
+    def read_torque_noise(self) -> float:
+        """torque_noise / sqrt(reads): the same for the torque check's reading."""
+        return self.torque_noise / math.sqrt(self.reads)
 
     @property
     def exact_torque(self) -> bool:
@@ -112,7 +138,8 @@ class SensorModel:
     def as_dict(self) -> dict:
         return {"noise": float(self.noise), "taxel": float(self.taxel), "seed": int(self.seed),
                 "torque_threshold": float(self.torque_threshold),
-                "torque_noise": float(self.torque_noise), "keyed": bool(self.keyed)}
+                "torque_noise": float(self.torque_noise), "keyed": bool(self.keyed),
+                "reads": int(self.reads)}
 
 
 class Sensor:
@@ -130,6 +157,9 @@ class Sensor:
         self.length = float(length)
         self.rng = np.random.default_rng(model.seed)
         self._reads: dict[bytes, int] = {}  # keyed: times each true posture was read
+        self.noise = model.read_noise  # the means of ``model.reads`` reads
+        self.torque_noise = model.read_torque_noise
+        self.count = 0  # reads taken: reading points x model.reads (not for perfect sensing)
 
     def _key(self, joint, direction) -> None:
         """Keyed streams: the generator restarted at the state that the seed, the true
@@ -145,14 +175,14 @@ class Sensor:
         self.rng.bit_generator.state = state
 
     def _jitter(self, shape) -> np.ndarray:
-        return self.rng.normal(0.0, self.model.noise, shape) if self.model.noise else np.zeros(shape)
+        return self.rng.normal(0.0, self.noise, shape) if self.noise else np.zeros(shape)
 
     def pose(self, joint, direction) -> tuple[np.ndarray, np.ndarray]:
         """Reported (P, t): (2,) joint and (2,) unit direction."""
-        if not self.model.noise:
+        if not self.noise:
             return np.array(joint, float), np.array(direction, float)
         ang = math.atan2(direction[1], direction[0]) + self.rng.normal(
-            0.0, self.model.noise / self.length)
+            0.0, self.noise / self.length)
         return np.asarray(joint, float) + self._jitter(2), np.array((math.cos(ang),
                                                                      math.sin(ang)))
 
@@ -185,8 +215,8 @@ class Sensor:
         if self.model.exact_torque:
             return bool(m[0] >= 0), bool(m[1] >= 0)
         read = np.maximum(m, 0.0)
-        if self.model.torque_noise:
-            read = read + self.rng.normal(0.0, self.model.torque_noise, 2)
+        if self.torque_noise:
+            read = read + self.rng.normal(0.0, self.torque_noise, 2)
         got = read >= self.model.torque_threshold
         return bool(got[0]), bool(got[1])
 
@@ -196,6 +226,7 @@ class Sensor:
         the torque sensor is not the paper's."""
         if self.model.ideal:
             return r
+        self.count += self.model.reads * (1 + len(r.trace))
         if self.model.keyed:
             self._key(r.joint, r.direction)
         if intrusion is not None and not self.model.exact_torque:

@@ -9,7 +9,9 @@ Factors (one task each value, :func:`run_factor`):
 * ``noise`` -- the sensor of :class:`core2d.SensorModel` with Gaussian noise
   sigma = 0 ... eps on contact positions and joint readings (the project's one
   noise model), ``fig18_overhangs``, every method (:data:`SENSOR_METHODS`:
-  the three backends, finger probing, the paper's flow, the contour follower);
+  the three backends, finger probing, the paper's flow, the contour follower),
+  each reading point averaged over the reads ``recon3d run`` takes by default
+  (:func:`core2d.resolution.repeated_reads`: 8 at sigma 0.3 eps, else 1);
 * ``taxel`` -- its taxel spacing 0 ... eps, ``fig18_overhangs``, every method;
 * ``resolution`` -- ``bowl`` at 4 tessellations (3D F@1% for pulling);
 * ``rotation x|y|z`` -- ``fig18_overhangs`` rotated about each axis (3D F@1%);
@@ -44,6 +46,7 @@ import meshes
 import recon3d
 import slicer
 from core2d import SensorModel, sense_slice
+from core2d.resolution import repeated_reads
 from core2d.truth.metrics import sensor_metrics, slice_metrics
 from recon3d.benchmark.cases import workspace
 from recon3d.config import diagonal
@@ -206,7 +209,9 @@ def run_factor(task: dict) -> list[dict]:
     for slc in _slices(task, mesh, diag):
         sensor = None
         if f in SENSOR_FACTORS and v:
-            sensor = SensorModel.of_eps(eps, **{f: v}, seed=slc.index)
+            fig = {"noise": 0.0, "taxel": 0.0, f: v}  # the reads recon3d run averages
+            sensor = SensorModel.of_eps(eps, **fig, seed=slc.index,
+                                        reads=repeated_reads(1.0, fig["noise"], fig["taxel"]))
         for method, backend in _methods(task, quick):
             r = _sense(slc, eps, method, backend, sensor, 5000)
             rows.append({**base, "method": f"{method}/{backend}", "slice": slc.index, **r})

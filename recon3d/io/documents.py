@@ -14,7 +14,8 @@ from recon3d.records import MeshRun, SliceRun
 __all__ = ["sensing_document", "slice_document", "metrics_document", "without_timing",
            "ROBOT_RULE"]
 
-ROBOT_RULE = "robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
+ROBOT_RULE = ("robot_time_s = joint_path / probe_speed + motions x motion_overhead_s"
+              " + sensor_reads x read_time_s")
 
 
 def without_timing(doc):
@@ -143,6 +144,7 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
         "jobs": int(run.jobs),
         "families": _families(run),
         "robot": {"probe_speed": cfg.speed, "motion_overhead_s": float(cfg.motion_overhead),
+                  "read_time_s": float(cfg.read_time),
                   "rule": ROBOT_RULE, "units": cfg.units},
         "total": total,
         "surface_eval": surface_eval,
@@ -154,7 +156,7 @@ def metrics_document(run: MeshRun, surface: dict | None, surface_eval: dict,
         doc["sensor"] = {"noise": float(cfg.noise), "taxel": float(cfg.taxel),
                          "seed": int(cfg.seed), "torque_threshold": float(cfg.torque_threshold),
                          "torque_noise": float(cfg.torque_noise),
-                         "keyed": bool(cfg.keyed_noise), "unit": "eps",
+                         "keyed": bool(cfg.keyed_noise), "reads": int(run.reads), "unit": "eps",
                          "metric_tol": "eps / 2 + 2 noise (the *_sensor metrics)"}
     if cfg.friction:  # absent: no friction, the paper's simulation
         doc["friction"] = float(cfg.friction)

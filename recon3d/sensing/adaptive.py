@@ -154,7 +154,8 @@ def _region(srun: SliceRun, tol: float):
 
 
 def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], families: int,
-                   tol_share: float, probe_speed: float, motion_overhead: float):
+                   tol_share: float, probe_speed: float, motion_overhead: float,
+                   read_time: float = 0.0):
     """Choose, round by round, which slices to sense at which eps (module doc).
 
     Parameters
@@ -163,8 +164,8 @@ def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], 
     sense : callable(list of (family, index, eps)) -> list of SliceRun, in task order.
     families : int -- number of slice families.
     tol_share : float -- contact resolution as a share of each slice's eps.
-    probe_speed, motion_overhead : float -- robot time of the passes sensed again (speed in
-        mesh units per second).
+    probe_speed, motion_overhead, read_time : float -- robot time of the passes sensed again
+        (speed in mesh units per second; :func:`recon3d.records.robot_time`).
 
     Returns
     -------
@@ -183,7 +184,8 @@ def sense_adaptive(plan: AdaptivePlan, sense: Callable[[list], list[SliceRun]], 
                 st = got[f][i][0].result.stats.as_dict()
                 discarded["motions"] += st["motions"]
                 discarded["joint_path"] += st["joint_path"]
-                discarded["robot_time_s"] += robot_time(st, probe_speed, motion_overhead)
+                discarded["robot_time_s"] += robot_time(st, probe_speed, motion_overhead,
+                                                        read_time)
                 discarded["slices"] += 1
             got[f][i] = (out, e)
             regions[f][i] = _region(out, tol_share * e)

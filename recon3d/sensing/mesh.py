@@ -22,7 +22,7 @@ from recon3d.config import Resolved, RunConfig, diagonal, resolve
 from recon3d.records import Family, MeshRun, SliceRun, robot_time
 from recon3d.sensing.adaptive import AdaptivePlan, sense_adaptive
 from recon3d.sensing.pool import sense_all
-from recon3d.sensing.worker import SenseSettings, family_slices
+from recon3d.sensing.worker import SenseSettings, family_slices, resolved_reads
 
 __all__ = ["sense_mesh"]
 
@@ -66,7 +66,8 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
                              config.max_motions, config.bootstrap, config.method,
                              float(config.noise), float(config.taxel), int(config.seed),
                              float(config.friction), float(config.torque_threshold),
-                             float(config.torque_noise), bool(config.keyed_noise))
+                             float(config.torque_noise), bool(config.keyed_noise),
+                             resolved_reads(config, tol / res.first_eps))
 
     def sense(tasks):
         return sense_all(mesh, cuts, settings, tasks, res.jobs, progress=progress,
@@ -77,17 +78,18 @@ def sense_mesh(mesh: trimesh.Trimesh, name: str, config: RunConfig,
         plan = AdaptivePlan(n, 3 if n < 16 else 5, float(config.slice_tol) * res.diagonal,
                             res.eps)
         got, eps, tol, info = sense_adaptive(plan, sense, len(normals), res.tol_share,
-                                             config.speed, config.motion_overhead)
+                                             config.speed, config.motion_overhead,
+                                             config.read_time)
     else:
         got, eps, tol, info = _sense_uniform(sense, cuts, res)
     run = MeshRun(name, mesh, config, eps, tol, probe_length=res.probe_length, jobs=res.jobs,
-                  families=[Family(n) for n in normals], adaptive=info)
+                  families=[Family(n) for n in normals], adaptive=info, reads=settings.reads)
     for f, fam in enumerate(run.families):
         for i in sorted(got[f]):
             out = got[f][i][0]
             out.slice = cuts[f][i]
-            out.metrics["robot_time_s"] = robot_time(out.result.stats.as_dict(),
-                                                     config.speed, config.motion_overhead)
+            out.metrics["robot_time_s"] = robot_time(out.result.stats.as_dict(), config.speed,
+                                                     config.motion_overhead, config.read_time)
             fam.slices.append(out)
     run.seconds = time.perf_counter() - t0
     return run

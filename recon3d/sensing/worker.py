@@ -23,6 +23,7 @@ from threadpoolctl import ThreadpoolController
 
 import core2d
 import slicer
+from core2d.resolution import repeated_reads
 from core2d.sim.sensor import SensorModel
 from core2d.truth.metrics import sensor_metrics, slice_metrics
 from core2d.truth.nearest import polyline_segments, segment_distances
@@ -33,7 +34,7 @@ from recon3d.io.motions import slice_rows
 from recon3d.records import ContourTruth, SliceRun
 from recon3d.score.evaluate import on_holes
 
-__all__ = ["SenseSettings", "WorkerState", "family_slices", "no_reference_metrics",
+__all__ = ["SenseSettings", "WorkerState", "family_slices", "resolved_reads", "no_reference_metrics",
            "own_contacts", "built_contacts"]
 
 
@@ -53,6 +54,7 @@ class SenseSettings:
     friction : float -- Coulomb mu at the tip (:mod:`core2d.sim.friction`; 0: none).
     torque_threshold, torque_noise : float -- the torque sensor's, in eps.
     keyed : bool -- keyed noise draws (:class:`core2d.SensorModel`'s ``keyed``).
+    reads : int -- reads averaged at each reading point (:class:`core2d.SensorModel`'s).
     """
 
     axes: tuple
@@ -70,13 +72,15 @@ class SenseSettings:
     torque_threshold: float = 0.0
     torque_noise: float = 0.0
     keyed: bool = False
+    reads: int = 1
 
     def sensor(self, family: int, index: int) -> SensorModel | None:
         """The sensor model of slice ``index`` of ``family`` at this eps (None: perfect)."""
         if not (self.noise or self.taxel or self.torque_threshold or self.torque_noise):
             return None
         return SensorModel.of_eps(self.eps, self.noise, self.taxel, self.seed,
-                                  self.torque_threshold, self.torque_noise, self.keyed).reseeded(
+                                  self.torque_threshold, self.torque_noise, self.keyed,
+                                  self.reads).reseeded(
             family, index)
 
     @property
@@ -88,6 +92,15 @@ class SenseSettings:
     def spacing(self) -> float:
         """Reference contour sampling step: eps / 4."""
         return 0.25 * self.eps
+
+
+def resolved_reads(config, tol_share: float) -> int:
+    """``config.reads`` (a :class:`~recon3d.config.RunConfig`'s) as a number: 'auto' asks
+    :func:`core2d.resolution.repeated_reads` for the stated noise and taxels (in eps) and
+    ``tol_share`` = tol / eps."""
+    if config.reads != "auto":
+        return int(config.reads)
+    return repeated_reads(1.0, float(config.noise), float(config.taxel), float(tol_share))
 
 
 def family_slices(mesh, axis, count):

@@ -1,0 +1,145 @@
+"""Repeated reads (``SensorModel(reads=N)``, ``--reads``): the robot averages N reads of its
+sensors at each reading point; ``core2d.resolution.repeated_reads`` picks N from the data
+sheet, and ``recon3d run`` takes that by default."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from core2d import SensorModel, sense_slice
+from core2d.resolution import MAX_READS, Resolution, repeated_reads
+from core2d.sim.probe import Probe
+from core2d.sim.sensor import Sensor
+from slicer.contact.exact import ExactContact
+
+SQUARE = [np.array([[-10.0, -10.0], [10.0, -10.0], [10.0, 0.0], [-10.0, 0.0]])]
+
+
+@pytest.mark.parametrize("noise, taxel, reads", [
+    (0.3, 0.25, 15), (0.3, 0.0, 8), (0.1, 0.25, 2), (0.5, 0.25, 42),
+    (0.1, 0.0, 1),    # already resolves eps/2: one read
+    (0.0, 0.25, 1),   # taxels alone: nothing to average
+    (0.0, 0.0, 1),    # the paper's perfect sensing
+    (1.0, 0.0, 1),    # 89 reads would be needed, over the cap: one read (module doc)
+    (0.1, 0.5, 1),    # taxels 0.5 eps never resolve eps/2, however many reads
+])
+def test_the_fewest_reads_that_resolve_half_eps(noise, taxel, reads):
+    """N resolves eps/2 and N - 1 does not; where no N up to the cap does, one read."""
+    assert repeated_reads(1.0, noise, taxel) == reads
+    fine = Resolution.of(1.0, None, noise / np.sqrt(reads), taxel).resolves_half_eps
+    if reads > 1:
+        assert fine and not Resolution.of(1.0, None, noise / np.sqrt(reads - 1),
+                                          taxel).resolves_half_eps
+    elif noise > 0:
+        cap = Resolution.of(1.0, None, noise / np.sqrt(MAX_READS), taxel).resolves_half_eps
+        assert fine or not cap
+    # scale-free: the same count in any unit
+    assert repeated_reads(2.5, 2.5 * noise, 2.5 * taxel) == reads
+
+
+def test_the_means_scatter_by_noise_over_root_reads_and_the_taxels_stay():
+    """Joint readings of one posture: sigma / sqrt(N) per axis, the direction's noise too;
+    a contact's taxel (rounded, not drawn) is the same with any N."""
+    joint, direction = np.zeros(2), np.array([1.0, 0.0])
+    spread = {}
+    for n in (1, 16):
+        s = Sensor(SensorModel(noise=0.2, taxel=0.25, seed=5, reads=n), length=10.0)
+        draws = [s.pose(joint, direction) for _ in range(4000)]
+        spread[n] = (np.std([p for p, _ in draws], axis=0),
+                     np.std([np.arctan2(t[1], t[0]) for _, t in draws]))
+        assert s.along(7.3) == Sensor(SensorModel(taxel=0.25), 10.0).along(7.3)
+    assert spread[1][0] == pytest.approx([0.2, 0.2], rel=0.06)
+    assert spread[16][0] == pytest.approx([0.05, 0.05], rel=0.06)
+    assert spread[16][1] == pytest.approx(spread[1][1] / 4, rel=0.08)
+
+
+def test_the_planner_is_told_the_noise_of_the_means():
+    probe = Probe(ExactContact(SQUARE), (np.zeros(2), 15.0), 1.0,
+                  sensor=SensorModel.of_eps(1.0, 0.3, 0.25, reads=15))
+    assert probe.resolution.noise == pytest.approx(0.3 / np.sqrt(15))
+    assert probe.resolution.taxel == 0.25 and probe.resolution.resolves_half_eps
+    single = Probe(ExactContact(SQUARE), (np.zeros(2), 15.0), 1.0,
+                   sensor=SensorModel.of_eps(1.0, 0.3, 0.25))
+    assert not single.resolution.resolves_half_eps
+
+
+def test_every_read_is_counted_and_perfect_sensing_reads_nothing():
+    """``sensor_reads`` = reading points x N: a multiple of N, N times the one-read count
+    on the same motions (taxels alone: the same readings whatever N); absent from the
+    stats of the paper's perfect sensing, whose sensing.json stays as it was."""
+    loop = [np.array([[0, 0], [20, 0], [20, 10], [11, 10], [11, 4], [9, 4], [9, 10],
+                      [0, 10]], dtype=float)]
+    ws = (np.array([10.0, 5.0]), 13.0)
+
+    def run(sensor):
+        return sense_slice(ExactContact(loop), ws, 1.0, max_motions=5000, sensor=sensor).stats
+
+    perfect = run(None)
+    assert perfect.sensor_reads == 0 and "sensor_reads" not in perfect.as_dict()
+    one, four = (run(SensorModel.of_eps(1.0, taxel=0.25, reads=n)) for n in (1, 4))
+    assert one.motions == four.motions and one.sensor_reads > one.motions
+    assert four.sensor_reads == 4 * one.sensor_reads
+    assert four.as_dict()["sensor_reads"] == four.sensor_reads
+
+
+@pytest.mark.filterwarnings("ignore:eps 1.5 is")
+def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
+    """``recon3d.run`` with noise 0.3 and taxels 0.25 averages 15 reads (``reads='auto'``),
+    ``reads=1`` one; metrics.json says which, and each slice's robot time is the stated
+    rule: joint path / speed + motions x overhead + sensor reads x read time."""
+    import trimesh
+
+    import recon3d
+
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    kw = dict(slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25, seed=1)
+    auto, one = recon3d.run(box, **kw), recon3d.run(box, reads=1, read_time=0.01, **kw)
+    assert auto.metrics["sensor"]["reads"] == 15 and one.metrics["sensor"]["reads"] == 1
+    robot = auto.metrics["robot"]
+    assert robot["read_time_s"] == 0.001 and "sensor_reads" in robot["rule"]
+    for run, read_time in ((auto, 0.001), (one, 0.01)):
+        for s in run.metrics["slices"]:
+            assert s["sensor_reads"] > 0
+            assert s["robot_time_s"] == pytest.approx(
+                s["joint_path"] / robot["probe_speed"] + s["motions"] * 0.2
+                + s["sensor_reads"] * read_time)
+    assert all(s["sensor_reads"] % 15 == 0 for s in auto.metrics["slices"])
+    perfect = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact")
+    assert all("sensor_reads" not in s for s in perfect.metrics["slices"])
+
+
+@pytest.mark.parametrize("spelling, name", [("key", "reads"), ("flag", "--reads")])
+def test_reads_without_noise_is_a_warning(spelling, name):
+    import trimesh
+
+    from recon3d.config import validate
+    from recon3d.spellings import make_config
+
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    notes = validate(box, make_config(reads=4, taxel=0.25), spelling)
+    assert any(n.startswith(f"{name} has no effect") for n in notes), notes
+    for cfg in (dict(reads=4, noise=0.3), dict(reads="auto"), dict(reads=1)):
+        assert not any("no effect" in n for n in validate(box, make_config(**cfg), spelling))
+
+
+def test_averaged_reads_trace_the_slots_one_read_leaves():
+    """The ``star`` outline, seed 1, at sigma 0.3 eps with taxels 0.25 eps (keyed sensor
+    seeds 1001, 2001, 5001: the sensor study's repeats 1, 2 and 5): one read per point
+    leaves slots 1.5 - 2 eps wide closed or unknown, because every radius of the coarse
+    sensor (1.5 - 2.5 eps) is as wide as they are. The 15 reads ``repeated_reads`` takes
+    bring the jitter to 0.45 eps, and every run covers >= 0.99 of the reachable contour
+    within eps/2 + 2 sigma, within 2 x its noiseless motions, precise and sound
+    (:func:`noisy_runs.coverages` asserts the per-run targets)."""
+    from noisy_runs import coverages
+    from outlines import outline
+
+    loops = outline("star", np.random.default_rng(1), 1.0)
+    pts = np.concatenate(loops)
+    lo, hi = pts.min(0), pts.max(0)
+    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
+    seeds = [1001, 2001, 5001]
+    n = repeated_reads(1.0, 0.3, 0.25)
+    averaged = coverages(loops, ws, 0.3, seeds, taxel=0.25, keyed=True, reads=n)
+    single = coverages(loops, ws, 0.3, seeds, taxel=0.25, keyed=True, reads=1)
+    assert averaged.min() >= 0.99, averaged
+    assert single.max() < 0.97, single

@@ -37,6 +37,7 @@ from recon3d.score.report import chord_lines, slicing_text, surface_lines
 from recon3d.score.unknowns import unknown_chords
 from recon3d.sensing import COMPILE_NOTICE, WorkerDied, cold_kernels, sense_mesh
 from recon3d.sensing.regions import RegionsAsSensed
+from recon3d.sensing.worker import resolved_reads
 from recon3d.surface import Reconstruction, reconstruct
 from recon3d.surface.closure import closure_lengths
 from recon3d.surface.field import grid_step
@@ -267,7 +268,8 @@ def execute(mesh: trimesh.Trimesh, name: str, config: RunConfig, notes: Sequence
     # each slice's filled region is closed in this process as the slice comes back (it only
     # waits for the workers); the reconstruction takes them as they are
     plan = resolve(config, diagonal(mesh))
-    lengths = closure_lengths(plan.eps, plan.tol, config.noise, config.taxel)
+    reads = resolved_reads(config, plan.tol / plan.eps)  # the closure sees the means' scatter
+    lengths = closure_lengths(plan.eps, plan.tol, config.noise / reads ** 0.5, config.taxel)
     regions = RegionsAsSensed(None if config.slices == "auto" else lengths)
 
     def sensed_one(srun: SliceRun) -> None:

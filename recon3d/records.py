@@ -166,6 +166,12 @@ class MeshRun:
         return [s for fam in self.families for s in fam.slices]
 
     @property
+    def read_noise(self) -> float:
+        """The sensor noise of the readings the planner saw, in eps: the stated noise over
+        sqrt(reads), the scatter of the means averaged at each reading point."""
+        return float(self.config.noise) / float(self.reads) ** 0.5
+
+    @property
     def totals(self) -> dict:
         """2D totals: accuracy over the slices with a reference, cost over all."""
         ref = [s.metrics for s in self.slices if s.has_reference]

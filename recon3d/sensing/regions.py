@@ -49,7 +49,7 @@ class RegionsAsSensed:
         :func:`recon3d.surface.reconstruct` takes as ``regions``); a slice not seen by
         :meth:`add` is closed here. None when the run's closure lengths are not the ones
         used."""
-        lengths = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
+        lengths = closure_lengths(run.eps, run.tol, run.read_noise, run.config.taxel)
         if self.lengths is None or lengths != self.lengths:
             return None
         out = []

@@ -74,7 +74,7 @@ def reconstruct(run: MeshRun, route: str = "warp", fusion: str = "weighted",
     """
     step = grid_step(run.eps, diagonal(run.mesh))
     keep = fusion == "weighted" and len(run.families) > 1
-    lengths = closure_lengths(run.eps, run.tol, run.config.noise, run.config.taxel)
+    lengths = closure_lengths(run.eps, run.tol, run.read_noise, run.config.taxel)
     given, regions, solids, notes = regions, [], [], []
     for f, fam in enumerate(run.families):
         regs = (list(given[f]) if given is not None else

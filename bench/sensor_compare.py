@@ -36,7 +36,7 @@ from bench.sensor_study import coverage_target, per_case
 
 __all__ = ["read_rows", "compare", "main"]
 
-_INT = ("motions", "repeat", "sensor_seed", "w3_count", "w3_unsound_count",
+_INT = ("motions", "repeat", "reads", "sensor_seed", "w3_count", "w3_unsound_count",
         "w3_unsound_count_sensor")
 _TEXT = ("group", "name", "error")
 _NEEDED = ("group", "name", "noise", "taxel", "sensor_seed", "repeat", "coverage_sensor",

@@ -29,6 +29,7 @@ def summarise(rows) -> list[dict]:
         base = sum(r["motions"] / r["ratio"] for r in rs)
         out.append({
             "group": g, "noise": noise, "taxel": taxel, "slices": len(rs),
+            "reads": max(int(r.get("reads", 1)) for r in rs),  # 1: a CSV from before --reads
             "coverage": total("covered_length", "reachable_length"),
             "coverage_sensor": total("covered_length_sensor", "reachable_length"),
             "cov_sensor_min": min(r["coverage_sensor"] for r in rs),
@@ -54,14 +55,14 @@ def summarise(rows) -> list[dict]:
 
 def markdown(summary) -> str:
     """The summary as a markdown table."""
-    rows = ["| group | noise (eps) | taxel (eps) | slices | coverage eps/2 | coverage eps/2+2σ "
+    rows = ["| group | noise (eps) | taxel (eps) | reads | slices | coverage eps/2 | coverage eps/2+2σ "
             "(min) | of it behind W2 chords | over the part eps resolves (min) | over the part "
             "eps + jitter resolves (min) | precision eps/2 "
             "| precision eps/2+2σ (min) | W3 lids | unsound eps/2 | unsound eps/2+2σ | motions "
-            "| × noiseless (max) | budget hits |", "|" + "---|" * 17]
+            "| × noiseless (max) | budget hits |", "|" + "---|" * 18]
     for s in summary:
         rows.append(
-            f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['slices']} | "
+            f"| {s['group']} | {s['noise']:g} | {s['taxel']:g} | {s['reads']} | {s['slices']} | "
             f"{s['coverage']:.4f} | {s['coverage_sensor']:.4f} ({s['cov_sensor_min']:.4f}) | "
             f"{_credit(s)} | "
             f"{s['resolved_sensor']:.4f} ({s['resolved_sensor_min']:.4f}) | "

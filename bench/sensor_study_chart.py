@@ -25,7 +25,8 @@ def chart(summary, path: Path, coverage_target) -> None:
     for j, g in enumerate(groups):
         rs = [s for s in summary if s["group"] == g]
         x = np.arange(len(rs))
-        labels = [f"σ {s['noise']:g}\nT {s['taxel']:g}" for s in rs]
+        labels = [f"σ {s['noise']:g}\nT {s['taxel']:g}"
+                  + (f"\n{s['reads']} reads" if s.get("reads", 1) > 1 else "") for s in rs]
         top, bottom = axes[0, j], axes[1, j]
         top.bar(x - 0.2, [s["ratio"] for s in rs], 0.4, label="total", color="tab:blue")
         top.bar(x + 0.2, [s["ratio_max"] for s in rs], 0.4, label="worst slice",
@@ -57,7 +58,7 @@ def chart(summary, path: Path, coverage_target) -> None:
         bottom.set_title(f"{g}: coverage")
         for ax in (top, bottom):
             ax.set_xticks(x, labels, fontsize=8)
-            ax.set_xlabel("sensor level (noise σ, taxel T, in eps)")
+            ax.set_xlabel("sensor level (noise σ, taxel T, in eps; reads averaged per point)")
             ax.grid(True, alpha=0.3, axis="y")
             ax.legend(fontsize=8)
     fig.savefig(path, dpi=100)

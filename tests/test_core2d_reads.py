@@ -108,6 +108,15 @@ def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
     assert one.sensing.read_noise == 0.3
     perfect = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact")
     assert all("sensor_reads" not in s for s in perfect.metrics["slices"])
+    # the summary's cost line says what the robot time counts
+    from recon3d.cli.printing import summary_lines
+
+    def cost(run):
+        return next(ln for ln in summary_lines(run) if "robot time" in ln)
+
+    reads = auto.metrics["total"]["sensor_reads"]
+    assert f"+ {reads} sensor reads x 0.001 s, 15 per reading point)" in cost(auto)
+    assert "sensor reads" not in cost(perfect)
 
 
 @pytest.mark.parametrize("spelling, name", [("key", "reads"), ("flag", "--reads")])

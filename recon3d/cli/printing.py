@@ -169,7 +169,9 @@ def summary_lines(result: Result, files: list[Path] = ()) -> list[str]:
                  f"{t.get('pushes', 0)} (attempts stopped by the Case 3 guard "
                  f"{t.get('push_attempts', 0)}, jams {t.get('jams', 0)})  budget hits {t.get('budget_hits', 0)}  robot time "
                  f"{format_seconds(t.get('robot_time_s'))} (probe {_speed(run.config)} + "
-                 f"{run.config.motion_overhead:g} s/motion)")
+                 f"{run.config.motion_overhead:g} s/motion"
+                 + (f" + {t['sensor_reads']} sensor reads x {run.config.read_time:g} s, "
+                    f"{run.reads} per reading point" if t.get("sensor_reads") else "") + ")")
     several = [s for s in run.slices if s.outer_loops > 1]
     if several:
         lines.append(f"  {len(several)} slices hold several objects (outside the paper's "

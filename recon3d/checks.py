@@ -37,7 +37,7 @@ __all__ = ["InputError", "EPS_SHARE", "EPS_WARN_SHARE", "TOL_SHARE", "positive",
            "check_eps", "check_tol", "check_out_dir", "at_least", "check_slices",
            "check_backend", "check_axes", "check_slice_tol", "check_slice_count", "MM_PER_UNIT",
            "SIZE_MM", "check_slice_spacing", "units_note", "check_choice", "check_flag",
-           "parse_slices"]
+           "parse_count_or_auto"]
 
 EPS_SHARE = (1e-4, 0.25)
 """eps bounds as shares of the mesh bounding-box diagonal."""
@@ -256,8 +256,9 @@ def check_flag(value, name: str) -> None:
         raise InputError(f"{name} must be True or False (got {value!r})")
 
 
-def parse_slices(text: str):
-    """``--slices`` on the command line: an integer or 'auto' (argparse ``type``)."""
+def parse_count_or_auto(text: str):
+    """``--slices`` and ``--reads`` on the command line: an integer or 'auto' (argparse
+    ``type``)."""
     if text == "auto":
         return text
     try:
@@ -273,6 +274,9 @@ def check_reads(value, name: str):
 
     if value == "auto":
         return value
+    if isinstance(value, str):
+        raise InputError(f"{name} must be 'auto' or an integer from 1 to {MAX_READS} "
+                         f"(got {value!r})")
     n = at_least(value, name)
     if n > MAX_READS:
         raise InputError(f"{name} must be 'auto' or at most {MAX_READS} (got {n})")

@@ -30,8 +30,8 @@ import slicer
 from recon3d.checks import (EPS_SHARE, EPS_WARN_SHARE, MM_PER_UNIT, TOL_SHARE, InputError,
                             at_least, check_axes, check_backend, check_choice, check_eps,
                             check_flag, check_slice_count, check_slice_spacing, check_slice_tol,
-                            check_reads, check_slices, check_tol, parse_slices, positive,
-                            units_note)
+                            check_reads, check_slices, check_tol, parse_count_or_auto,
+                            positive, units_note)
 from recon3d.param import Param, param
 
 if TYPE_CHECKING:  # annotations only: the parser of recon3d loads no trimesh (--help)
@@ -81,7 +81,8 @@ class RunConfig:
         doc=(("slice normal: `x`, `y`, `z`, `-x`, … or `nx,ny,nz` (`--axis "
               "-1,0,0` works). Repeat it for several slice families fused into one surface"),))
     slices: int | Literal["auto"] = param(
-        8, parse=parse_slices, metavar="N", shown_default="8", convert=check_slices,
+        8, parse=parse_count_or_auto, metavar="N", shown_default="8",
+        convert=check_slices,
         check=check_slice_count, when=lambda c: not _auto(c),
         help="slices per axis, at least 2 (default 8; more than extent / eps needs --force), "
         "or 'auto': adaptive slicing -- start coarse, add slices where neighbouring sensed "
@@ -155,7 +156,8 @@ class RunConfig:
               "later reading; for comparing two planners run by run (statistically the same "
               "sensor)"),))
     reads: int | Literal["auto"] = param(
-        "auto", parse=parse_slices, metavar="N", shown_default="`auto`", check=check_reads,
+        "auto", parse=parse_count_or_auto, metavar="N", shown_default="`auto`",
+        check=check_reads,
         help="reads of the sensors averaged at each reading point (default auto: as many as "
         "make two readings of one point resolve eps/2, else one; at most 64)",
         doc=(("the robot reads its skin, joint and torque sensors N times where it stands "

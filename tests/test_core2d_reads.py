@@ -119,6 +119,20 @@ def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
     assert "sensor reads" not in cost(perfect)
 
 
+@pytest.mark.parametrize("bad, says", [("many", "'auto' or an integer from 1 to 64"),
+                                       (0, "at least 1"), (65, "at most 64"),
+                                       (2.5, "integer"), (True, "integer")])
+def test_bad_reads_in_the_api_is_one_clear_error(bad, says):
+    import trimesh
+
+    import recon3d
+
+    box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
+    with pytest.raises(recon3d.InputError, match="reads") as err:
+        recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, reads=bad)
+    assert says in str(err.value) and len(str(err.value).splitlines()) == 1
+
+
 @pytest.mark.parametrize("spelling, name", [("key", "reads"), ("flag", "--reads")])
 def test_reads_without_noise_is_a_warning(spelling, name):
     import trimesh

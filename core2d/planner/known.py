@@ -263,6 +263,14 @@ class KnownContour:
         """The widest gap that the chain of :meth:`covers` from A to B hops
         between two pieces (each hop is at most ``join``; 0.0 for a chain of
         one piece), or None when no chain leads there."""
+        hops = self.hops(a, b, tol)
+        return None if hops is None else max((float(np.hypot(*(h[1] - h[0]))) for h in hops),
+                                             default=0.0)
+
+    def hops(self, a, b, tol: float) -> list[np.ndarray] | None:
+        """The gaps that the chain of :meth:`covers` from A to B hops between two
+        pieces, as (2, 2) float segments from the last point of one piece to the
+        first of the next, in order; None when no chain leads there."""
         found = self._chain(a, b, tol, ())
         return None if found is None else found[1]
 
@@ -274,7 +282,7 @@ class KnownContour:
         return None if found is None else found[0]
 
     def _chain(self, a, b, tol: float, exclude):
-        """:meth:`chain` and :meth:`widest_hop` together, or None."""
+        """:meth:`chain` and :meth:`hops` together, or None."""
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
@@ -299,10 +307,10 @@ class KnownContour:
             todo.extend((j, float(first[j] + k), i) for j, k in self._next[i])
         return None
 
-    def _walk(self, last, end_pos, reached, came) -> tuple[np.ndarray, float]:
+    def _walk(self, last, end_pos, reached, came) -> tuple[np.ndarray, list]:
         """Points of the chain that ends in piece ``last`` at ``end_pos``:
-        each piece from where it was reached to its end (or to B); and the
-        widest hop between two pieces of it."""
+        each piece from where it was reached to its end (or to B); and its
+        hops between two pieces ((2, 2) float each)."""
         parts, i, stop, seen = [], last, end_pos, set()
         while i is not None and i not in seen:  # a re-reached piece can close a cycle
             seen.add(i)
@@ -311,8 +319,8 @@ class KnownContour:
             if i is not None:
                 stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
         parts = parts[::-1]
-        hops = [float(np.hypot(*(q[0] - p[-1]))) for p, q in zip(parts, parts[1:])]
-        return np.concatenate(parts), max(hops, default=0.0)
+        hops = [np.stack([p[-1], q[0]]) for p, q in zip(parts, parts[1:])]
+        return np.concatenate(parts), hops
 
     def _span(self, i, start, stop) -> np.ndarray:
         """Points of piece ``i`` between global segment positions ``start`` and ``stop``."""

@@ -49,7 +49,8 @@ import numpy as np
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "close_unresolved"]
+__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "record_gaps",
+           "close_unresolved"]
 
 JUMPS = ("case2-1", "case2-2", "hop")
 """Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
@@ -110,9 +111,18 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     jitter, §3.1 at the sensor's resolution), so that the result shows all of
     the contour the planner closes as known. With perfect sensing there is none.
 
+    For the same reason, with a noisy sensor, each hop of the chain longer than
+    the fan spacing (eps/4) is a W2 chord too: the map joined the two pieces
+    across a gap narrower than eps + jitter, which §3.1 approximates by the
+    chord (below eps only, for a sensor whose readings do not resolve eps/2:
+    :func:`_chord_limit`). Reported as traced, a slot 0.89 eps wide and 84 eps
+    deep whose mouth the chain hopped was covered by nothing (``comb`` scene z7
+    of 8, keyed sensor seed 7 at sigma 0.1 eps: 0.835 -> 0.914). Perfect
+    sensing keeps the paper's output as it was.
+
     Returns
     -------
-    list of (2, 2) float (at most two: from A_i, to B_i), or None.
+    list of (2, 2) float (the ends' chords, then the hops'), or None.
 
     Examples
     --------
@@ -124,14 +134,34 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     [[[6.0, 0.0], [7.5, 0.0]]]
     >>> traced_gaps(known, (0.0, 0.4), (9.0, 0.0), 2.0, coarse) is None
     True
+    >>> fine = Resolution.of(1.0, noise=0.0775, taxel=0.25)  # 15 reads at sigma 0.3 eps
+    >>> known = KnownContour(join=fine.w2_dist)
+    >>> known.add(np.array([[0.0, 0.0], [3.0, 0.0]])); known.add(np.array([[3.6, 0.0], [8.0, 0.0]]))
+    >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.0), (8.0, 0.0), 0.5, fine)]
+    [[[3.0, 0.0], [3.6, 0.0]]]
     """
-    if resolves_half_eps(res):
-        hop = known.widest_hop(a, b, tol)
-        if hop is None or hop >= res.eps:
-            return None
-    elif not known.covers(a, b, tol):
+    hops = known.hops(a, b, tol)
+    if hops is None:
         return None
-    return end_chords(known, a, b, res)
+    widths = [float(np.hypot(*(h[1] - h[0]))) for h in hops]
+    if resolves_half_eps(res) and max(widths, default=0.0) >= res.eps:
+        return None
+    ends = end_chords(known, a, b, res)
+    if res.jitter == 0:
+        return ends
+    return ends + [h for h, w in zip(hops, widths) if res.fan_spacing < w < _chord_limit(res)]
+
+
+def _chord_limit(res: Resolution) -> float:
+    """The widest break or hop of the record written as a W2 chord
+    (:func:`traced_gaps`, :func:`record_gaps`): the W2 distance eps + jitter
+    where two readings resolve eps/2, else eps, the paper's own bound. A coarse
+    sensor (sigma 0.3 eps read once: jitter 1.52 eps) reads the mouth of a slot
+    1.5 - 2.5 eps wide as a gap narrower than its W2 distance; its chord would
+    credit contour the readings cannot place (one read of the ``star`` outline,
+    seed 1, keyed seeds 1001 / 2001 / 5001: coverage 0.95 / 0.96 / 0.91 -> 1.0,
+    all of it through such chords)."""
+    return res.w2_dist if resolves_half_eps(res) else res.eps
 
 
 def end_chords(known, a, b, res: Resolution) -> list[np.ndarray]:
@@ -150,6 +180,89 @@ def end_chords(known, a, b, res: Resolution) -> list[np.ndarray]:
         if known.distance(end) > res.eps:
             q = known.nearest_point(end)
             gaps.append(np.array([end, q] if first else [q, end], dtype=float))
+    return gaps
+
+
+def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
+    """W2 chords over the breaks of the recorded contour along the lid A_iB_i
+    of an area closed as traced because its lid lies along recorded contour
+    (:func:`~core2d.planner.revisit.on_recorded`,
+    :func:`~core2d.planner.revisit.reversed_lid`).
+
+    Such a lid passes within :attr:`~core2d.resolution.Resolution.near` (2 tol
+    + the jitter) of the record at every point it is sampled at, so a break
+    between two recorded pieces along it is about as narrow as eps + jitter, the
+    W2 distance: §3.1 approximates the contour behind it by the chord
+    (Dist < eps at the sensor's resolution; a break as wide as
+    :func:`_chord_limit` or wider is left as it was). Closing the area as traced
+    without the chord claimed that contour recorded: a slot 0.8 eps wide whose
+    mouth lay under such a lid was covered by nothing (``comb`` outline seed 0,
+    keyed sensor seed 2000 at sigma 0.3 eps + taxels 0.25 eps, 15 reads).
+
+    Each recorded segment is clipped to the band of half-width ``near`` about
+    the lid; the stretches of the lid that no clipped segment projects onto,
+    between two that do, and longer than the fan spacing (eps/4, the step at
+    which ``on_recorded`` samples the lid), are the breaks. A chord joins the
+    recorded points either side of a break. The lid's ends are
+    :func:`end_chords`' (both together give every contour the area claims).
+
+    known : KnownContour ; a, b : (2,) float -- A_i and B_i ; res : Resolution.
+
+    Returns
+    -------
+    list of (2, 2) float, ordered from A_i to B_i.
+
+    Examples
+    --------
+    >>> from core2d.planner.known import KnownContour
+    >>> fine = Resolution.of(1.0, noise=0.0775, taxel=0.25)  # near 0.55 eps
+    >>> known = KnownContour(join=fine.w2_dist)
+    >>> known.add(np.array([[0.0, 0.0], [3.0, 0.0]]))
+    >>> known.add(np.array([[4.2, 0.1], [8.0, 0.0]]))
+    >>> [g.round(2).tolist() for g in record_gaps(known, (0.0, 0.0), (8.0, 0.0), fine)]
+    [[[3.0, 0.0], [4.2, 0.1]]]
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    seg_a, seg_b = known.segments()
+    length = float(np.hypot(*(b - a)))
+    if length == 0 or not len(seg_a):
+        return []
+    u = (b - a) / length
+    n = np.array([-u[1], u[0]])
+    half = res.near
+    # each segment in the lid's frame: s along it, h across (Liang-Barsky clip)
+    s0, s1 = (seg_a - a) @ u, (seg_b - a) @ u
+    h0, h1 = (seg_a - a) @ n, (seg_b - a) @ n
+    lo, hi = np.zeros(len(s0)), np.ones(len(s0))
+    for p0, p1, low, high in ((s0, s1, 0.0, length), (h0, h1, -half, half)):
+        d = p1 - p0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ta, tb = (low - p0) / d, (high - p0) / d
+        flat = d == 0
+        inside = (p0 >= low) & (p0 <= high)
+        lo = np.where(flat, np.where(inside, lo, 2.0), np.maximum(lo, np.minimum(ta, tb)))
+        hi = np.where(flat, np.where(inside, hi, -1.0), np.minimum(hi, np.maximum(ta, tb)))
+    keep = lo <= hi
+    if not keep.any():
+        return []
+    lo, hi = lo[keep], hi[keep]
+    pa, pb = seg_a[keep], seg_b[keep]
+    p_lo = pa + lo[:, None] * (pb - pa)
+    p_hi = pa + hi[:, None] * (pb - pa)
+    t_lo, t_hi = (p_lo - a) @ u, (p_hi - a) @ u
+    swap = t_lo > t_hi  # a segment read against the lid's direction
+    start = np.where(swap, t_hi, t_lo)
+    stop = np.where(swap, t_lo, t_hi)
+    start_pt = np.where(swap[:, None], p_hi, p_lo)
+    stop_pt = np.where(swap[:, None], p_lo, p_hi)
+    order = np.argsort(start, kind="stable")
+    gaps, reach, reach_pt = [], stop[order[0]], stop_pt[order[0]]
+    for k in order[1:].tolist():
+        if start[k] - reach > res.fan_spacing and np.hypot(*(start_pt[k] - reach_pt)) < \
+                _chord_limit(res):
+            gaps.append(np.array([reach_pt, start_pt[k]], dtype=float))
+        if stop[k] > reach:
+            reach, reach_pt = stop[k], stop_pt[k]
     return gaps
 
 

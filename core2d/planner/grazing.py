@@ -173,38 +173,23 @@ class Blockers:
     active : bool -- False: nothing is kept (perfect sensing, or beyond
         :func:`resolves_half_eps`).
     points : list of (2,) float -- the blocking contacts so far.
-    at_lid : float -- a contact within this distance of the lid reached it
-        (``Resolution.jitter``): no blocker.
     """
 
     radius: float
     reach: float
     active: bool = True
     points: list = field(default_factory=list)
-    at_lid: float = 0.0
 
     @classmethod
     def of(cls, res: Resolution, reach: float) -> Blockers:
         """Blockers with ``res.near``, active where :func:`resolves_half_eps`."""
-        return cls(res.near, float(reach), resolves_half_eps(res), at_lid=res.jitter)
+        return cls(res.near, float(reach), resolves_half_eps(res))
 
     def add(self, a, b, joint, point) -> None:
         """Keep contact ``point`` when the pass from ``joint`` stopped there in
-        front of the lid ``a`` -> ``b`` (the caller leaves out contacts at an end),
-        farther from the lid than ``at_lid``.
-
-        A pass that stopped within the jitter of the lid reached it: its contact
-        is the lid's own contour read with the sensor's scatter (the corner at a
-        slot's mouth that the lid runs past), not contour in front of the lid.
-        As a blocker it stopped every later line within ``radius`` of it, the
-        one straight into the slot beside the corner too: a slot 1.85 eps wide
-        under an escape lid was never entered (``comb`` outline seed 0, keyed
-        sensor seed 1000 at sigma 0.3 eps + taxels 0.25 eps, 15 reads: 0.969;
-        1.000 with the rule)."""
-        a, b, point = (np.asarray(x, float) for x in (a, b, point))
-        if self.active and not crosses_lid(a, b, joint, point) and \
-                _segment_distance(point, a, b) > self.at_lid:
-            self.points.append(point)
+        front of the lid ``a`` -> ``b`` (the caller leaves out contacts at an end)."""
+        if self.active and not crosses_lid(a, b, joint, point):
+            self.points.append(np.asarray(point, float))
 
     def stops(self, point, direction) -> bool:
         """Does the pass to lid sample ``point`` along ``direction`` (from F)

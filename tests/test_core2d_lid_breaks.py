@@ -92,8 +92,8 @@ def test_a_slot_whose_mouth_the_chain_hops_is_approximated_w2():
     (the sensor study's repeat 0): an area closed as traced through other areas by a chain
     of recorded pieces that hops the mouth of a slot 0.89 eps wide and 84 eps deep. Without
     the hop's W2 chord the slot (168 eps of contour) was covered by nothing: 0.835 instead
-    of 0.914 (the scene's slots narrower than eps keep it below the target; noiseless 0.876
-    on z3)."""
+    of 0.914 (the scene's slots narrower than eps keep it below the target: noiseless
+    0.876)."""
     import meshes
     import slicer
     from noisy_runs import scene_slice

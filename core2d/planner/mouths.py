@@ -203,8 +203,14 @@ def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
     the lid; the stretches of the lid that no clipped segment projects onto,
     between two that do, and longer than the fan spacing (eps/4, the step at
     which ``on_recorded`` samples the lid), are the breaks. A chord joins the
-    recorded points either side of a break. The lid's ends are
-    :func:`end_chords`' (both together give every contour the area claims).
+    recorded points either side of a break. A_i and B_i count as recorded points
+    where :func:`end_chords` leaves them (within eps of the record): a break between
+    an end and the nearest piece along the lid is a break like any other (the
+    ``comb`` scene z2 of 8 at sigma 0.1 eps, keyed sensor seed 2: the last piece
+    along a lid ended 0.92 eps before B_i, and the slot behind that break was
+    covered by nothing, coverage 0.825; with the chord 0.906). :func:`end_chords`
+    chords the ends farther away (both together give every contour the area
+    claims).
 
     known : KnownContour ; a, b : (2,) float -- A_i and B_i ; res : Resolution.
 
@@ -243,12 +249,16 @@ def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
         lo = np.where(flat, np.where(inside, lo, 2.0), np.maximum(lo, np.minimum(ta, tb)))
         hi = np.where(flat, np.where(inside, hi, -1.0), np.minimum(hi, np.maximum(ta, tb)))
     keep = lo <= hi
-    if not keep.any():
-        return []
     lo, hi = lo[keep], hi[keep]
     pa, pb = seg_a[keep], seg_b[keep]
     p_lo = pa + lo[:, None] * (pb - pa)
     p_hi = pa + hi[:, None] * (pb - pa)
+    # A_i and B_i are readings too, where end_chords leaves them (within eps of the record)
+    ends = [e for e in (a, b) if known.distance(e) <= res.eps]
+    if ends:
+        p_lo, p_hi = np.concatenate([p_lo, ends]), np.concatenate([p_hi, ends])
+    if not len(p_lo):
+        return []
     t_lo, t_hi = (p_lo - a) @ u, (p_hi - a) @ u
     swap = t_lo > t_hi  # a segment read against the lid's direction
     start = np.where(swap, t_hi, t_lo)

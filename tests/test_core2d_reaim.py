@@ -119,15 +119,17 @@ def _outline_run(kind, seed, sensor_seed):
     return res, sensor_metrics(loops, res, 1.0, 0.1)
 
 
-@pytest.mark.parametrize("seed", [0, 1])
-def test_slots_of_the_comb_outlines_covered_at_sigma_01(seed):
+@pytest.mark.parametrize("seed, sensor_seed", [(0, 0), (1, 7001)])
+def test_slots_of_the_comb_outlines_covered_at_sigma_01(seed, sensor_seed):
     """The ``comb`` outlines of ``tests/outlines.py`` (slots about one to two
-    eps wide) with their own sensor seed, sigma 0.1 eps: the revisit's
-    passes through lids along the slot walls landed near the lids' ends
-    and the lids ended unknown. Reachable coverage within eps/2 + 2 sigma
-    without the aimed-again passes 0.9655 (seed 0) and 0.9763 (seed 1);
-    with them 0.9977 and 0.9995."""
-    res, m = _outline_run("comb", seed, seed)
+    eps wide), sigma 0.1 eps: the revisit's passes through lids along the slot
+    walls landed near the lids' ends and the lids ended unknown. Reachable
+    coverage within eps/2 + 2 sigma without the aimed-again passes 0.9659
+    (seed 0, sensor seed 0) and 0.9856 (seed 1, sensor seed 7001); with them
+    0.9960 and 1.0000 (at ``977c193``). Over sensor seeds 0, 1000, ..., 7000 of
+    seed 0 the mean is 0.957 without them and 0.987 with them; seed 1's own
+    sensor seed, which this test used first, reaches 0.999 without them since."""
+    res, m = _outline_run("comb", seed, sensor_seed)
     assert m["coverage_sensor"] >= 0.99, f"{m['coverage_sensor']:.4f}"
     assert m["precision_sensor"] >= 0.98
     assert m["w3_unsound_count_sensor"] == 0

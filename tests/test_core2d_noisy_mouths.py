@@ -51,7 +51,8 @@ def test_a_chain_that_hops_a_mouth_covers_nothing(gap, fine):
     known.add([[0.0, 0.0], [4.0, 0.0]])
     known.add([[4.0 + gap, 0.0], [9.0, 0.0]])
     assert known.covers([1.0, 0.0], [8.0, 0.0], 0.1)
-    assert known.widest_hop([1.0, 0.0], [8.0, 0.0], 0.1) == pytest.approx(gap)
+    (hop,) = known.hops([1.0, 0.0], [8.0, 0.0], 0.1)
+    assert np.hypot(*(hop[1] - hop[0])) == pytest.approx(gap)
     assert covered(known, [1.0, 0.0], [8.0, 0.0], 0.1, FINE) is fine
     assert covered(known, [1.0, 0.0], [8.0, 0.0], 0.1, COARSE)  # sigma 0.3: covers
 

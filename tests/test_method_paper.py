@@ -161,7 +161,7 @@ def test_no_map_closure(monkeypatch, flow, used):
 
     def chain(self, *a, **kw):  # who asked, past the map's and the mouths' wrappers
         frame = sys._getframe(1)
-        while frame.f_code.co_name in ("covers", "chain", "hops", "widest_hop", "covered",
+        while frame.f_code.co_name in ("covers", "chain", "hops", "covered",
                                        "traced_gaps"):
             frame = frame.f_back
         asked.append(frame.f_code.co_name)

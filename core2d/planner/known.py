@@ -259,14 +259,6 @@ class KnownContour:
         in the pieces' direction (B after A along the pieces)?"""
         return self.chain(a, b, tol) is not None
 
-    def widest_hop(self, a, b, tol: float) -> float | None:
-        """The widest gap that the chain of :meth:`covers` from A to B hops
-        between two pieces (each hop is at most ``join``; 0.0 for a chain of
-        one piece), or None when no chain leads there."""
-        hops = self.hops(a, b, tol)
-        return None if hops is None else max((float(np.hypot(*(h[1] - h[0]))) for h in hops),
-                                             default=0.0)
-
     def hops(self, a, b, tol: float) -> list[np.ndarray] | None:
         """The gaps that the chain of :meth:`covers` from A to B hops between two
         pieces, as (2, 2) float segments from the last point of one piece to the

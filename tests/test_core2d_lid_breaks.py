@@ -110,40 +110,27 @@ def test_the_hops_of_a_chain_are_w2_with_a_noisy_sensor_only():
     assert traced_gaps(known, (0, 0), (9, 0), 0.5, perfect) == []
 
 
-def test_a_slot_whose_mouth_the_chain_hops_is_approximated_w2():
-    """The ``comb`` scene, z-slice 7 of 8, sigma 0.1 eps read once, keyed sensor seed 7
-    (the sensor study's repeat 0): an area closed as traced through other areas by a chain
-    of recorded pieces that hops the mouth of a slot 0.89 eps wide and 84 eps deep. Without
-    the hop's W2 chord the slot (168 eps of contour) was covered by nothing: 0.835 instead
-    of 0.914 (the scene's slots narrower than eps keep it below the target: noiseless
-    0.876)."""
+@pytest.mark.parametrize("z, seed", [(7, 7), (2, 2)], ids=["hop", "break-at-an-end"])
+def test_the_comb_scenes_slot_under_a_hop_or_a_break_is_approximated_w2(z, seed):
+    """The ``comb`` scene at sigma 0.1 eps read once, keyed sensor seed = z (the sensor
+    study's repeat 0), the slot 0.89 eps wide and 84 eps deep at x 17.35:
+
+    * z7: an area closed as traced through other areas by a chain of recorded pieces
+      that hops the slot's mouth. Without the hop's W2 chord the slot (168 eps of
+      contour) was covered by nothing: 0.835 instead of 0.914.
+    * z2: a lid closed as lying along the record, whose last recorded piece ends 0.92 eps
+      before B_i, across the slot's mouth. Without the break at that end written W2 the
+      slot was covered by nothing: 0.825 instead of 0.906.
+
+    The scene's slots narrower than eps keep it below the target (noiseless z7 0.876)."""
     import meshes
     import slicer
     from noisy_runs import scene_slice
 
-    res, m = scene_slice("comb", 7, 0.1, 0.0, 7, keyed=True)
+    res, m = scene_slice("comb", z, 0.1, 0.0, seed, keyed=True)
     mesh = meshes.load("comb")
     eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    loop = np.asarray(slicer.slice_mesh(mesh, axis="z", count=8)[7].loops[0])
-    assert _spans_mouth(res.w2, loop, 17.35, eps), "no W2 chord over the slot's mouth"
-    assert m["coverage_sensor"] >= 0.9, m["coverage_sensor"]
-    assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
-
-
-def test_a_slot_behind_a_break_at_a_lids_end_is_approximated_w2():
-    """The ``comb`` scene, z-slice 2 of 8, sigma 0.1 eps read once, keyed sensor seed 2
-    (the sensor study's repeat 0): a lid closed as lying along the record, whose last
-    recorded piece ends 0.92 eps before B_i, across the mouth of the slot of the test
-    above. Without the break at the end written W2, that slot was covered by nothing:
-    0.825 instead of 0.906."""
-    import meshes
-    import slicer
-    from noisy_runs import scene_slice
-
-    res, m = scene_slice("comb", 2, 0.1, 0.0, 2, keyed=True)
-    mesh = meshes.load("comb")
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    loop = np.asarray(slicer.slice_mesh(mesh, axis="z", count=8)[2].loops[0])
+    loop = np.asarray(slicer.slice_mesh(mesh, axis="z", count=8)[z].loops[0])
     assert _spans_mouth(res.w2, loop, 17.35, eps), "no W2 chord over the slot's mouth"
     assert m["coverage_sensor"] >= 0.9, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0

@@ -1,6 +1,7 @@
 """A forked child (a sensing worker, a side process) inherits its parent's objects frozen
-out of the cyclic collector (``gc.freeze``), and the parent's own collector gets them back
-once the fork or the pool is done."""
+out of the cyclic collector (``gc.freeze``), sensing in this process runs with them frozen,
+and the parent's own collector gets them back once the fork, the pool or the sensing is
+done."""
 import gc
 
 import pytest
@@ -54,4 +55,23 @@ def test_sensing_workers_inherit_the_heap_frozen(monkeypatch):
     run = sense_mesh(ring, "ring", RunConfig(slices=4, jobs=2, eps=0.2))
     counts = [s.metrics["frozen_objects"] for s in run.families[0].slices]
     assert len(counts) == 4 and all(c > 1000 for c in counts)  # the parent's objects
+    assert gc.get_freeze_count() == 0
+
+
+def test_sensing_in_this_process_runs_with_the_heap_frozen(monkeypatch):
+    """``jobs=1`` (and the first slice sensed here while the kernels compile): the objects
+    made before the sensing are out of the collector's reach while it runs, as in a worker,
+    and given back after."""
+    real = worker_mod.WorkerState.sense
+
+    def sense(self, *args, **kwargs):
+        srun = real(self, *args, **kwargs)
+        srun.metrics["frozen_objects"] = gc.get_freeze_count()
+        return srun
+
+    monkeypatch.setattr(worker_mod.WorkerState, "sense", sense)
+    ring = trimesh.creation.annulus(r_min=1.0, r_max=2.0, height=1.0, sections=32)
+    run = sense_mesh(ring, "ring", RunConfig(slices=3, jobs=1, eps=0.2))
+    counts = [s.metrics["frozen_objects"] for s in run.families[0].slices]
+    assert len(counts) == 3 and all(c > 1000 for c in counts)  # this process's objects
     assert gc.get_freeze_count() == 0

@@ -11,7 +11,9 @@ the work and the working tree. It uses only calls both have: ``meshes.load``,
 and the counters of ``SenseStats``.
 
 Compiled code is loaded before timing (a short sensing run on the first
-slice, 200 motions). Per slice it writes to ``OUT`` (JSON): CPU seconds of ``sense_slice``
+slice, 200 motions); then the process's objects are frozen out of the cyclic
+collector (``gc.freeze``), as a run's sensing workers inherit them and as a
+run senses in one process. Per slice it writes to ``OUT`` (JSON): CPU seconds of ``sense_slice``
 (``time.process_time``: the machine is shared), motions, rays, casts, the
 W1 / W2 / W3 / unknown geometry, and the process's peak resident memory
 after sensing. With ``--raw`` it senses every slice a second time with the
@@ -25,6 +27,7 @@ replayed every ``_FLUSH`` rays, so its memory is bounded.
 """
 from __future__ import annotations
 
+import gc
 import json
 import logging
 import resource
@@ -222,6 +225,9 @@ def main(argv) -> int:
         center, radius = cuts[0].bounding_circle()
         core2d.sense_slice(cuts[0].contact("embree"), (center, radius + eps), eps, tol=tol,
                            max_motions=200)
+    # as the product senses (recon3d.sensing.pool): what exists before the sensing frozen
+    # out of the cyclic collector, so that its full collections walk only what sensing made
+    gc.freeze()
     base = _peak_mib()
     rows = []
     for cut in cuts:

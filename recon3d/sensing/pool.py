@@ -349,12 +349,10 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
 
 def _sense_here(settings: SenseSettings, families: list, tasks: list, out: list,
                 progress, start: int = 0) -> None:
-    """Sense ``tasks[start:]`` in this process into ``out`` (contact caches of its own).
-
-    With the objects made before the sensing frozen out of the cyclic collector's reach
-    (:func:`recon3d.io.side.frozen_heap`), as in a forked worker: the planner's allocations
-    trigger collections, and each full one walked every object of this process (the
-    imports, the mesh, the scene), 10 - 15 % of the sensing's time in one process."""
+    """Sense ``tasks[start:]`` in this process into ``out`` (contact caches of its own),
+    the objects made before frozen out of the cyclic collector (:func:`frozen_heap`), as in
+    a forked worker: each full collection the planner's allocations trigger walked every
+    object of this process (imports, mesh, scenes), 10 - 15 % of the sensing's time."""
     state = WorkerState(settings, own_contacts(families))
     with frozen_heap():
         for k in range(start, len(tasks)):

@@ -40,8 +40,12 @@ def test_a_side_child_inherits_the_heap_frozen():
     assert gc.get_freeze_count() == 0
 
 
-@needs_fork
-def test_sensing_workers_inherit_the_heap_frozen(monkeypatch):
+@pytest.mark.parametrize("jobs", [pytest.param(2, marks=needs_fork), 1],
+                         ids=["workers", "this-process"])
+def test_sensing_runs_with_the_heap_frozen(monkeypatch, jobs):
+    """Forked workers inherit the parent's objects frozen; with ``jobs=1`` (and for the
+    first slice sensed here while the kernels compile) the objects made before the
+    sensing are frozen while it runs, as in a worker. Both give them back after."""
     real = worker_mod.WorkerState.sense
 
     def sense(self, *args, **kwargs):
@@ -52,26 +56,7 @@ def test_sensing_workers_inherit_the_heap_frozen(monkeypatch):
     monkeypatch.setattr(worker_mod.WorkerState, "sense", sense)
     monkeypatch.setattr(pool, "cold_kernels", lambda: False)  # every slice in a worker
     ring = trimesh.creation.annulus(r_min=1.0, r_max=2.0, height=1.0, sections=32)
-    run = sense_mesh(ring, "ring", RunConfig(slices=4, jobs=2, eps=0.2))
+    run = sense_mesh(ring, "ring", RunConfig(slices=4, jobs=jobs, eps=0.2))
     counts = [s.metrics["frozen_objects"] for s in run.families[0].slices]
     assert len(counts) == 4 and all(c > 1000 for c in counts)  # the parent's objects
-    assert gc.get_freeze_count() == 0
-
-
-def test_sensing_in_this_process_runs_with_the_heap_frozen(monkeypatch):
-    """``jobs=1`` (and the first slice sensed here while the kernels compile): the objects
-    made before the sensing are out of the collector's reach while it runs, as in a worker,
-    and given back after."""
-    real = worker_mod.WorkerState.sense
-
-    def sense(self, *args, **kwargs):
-        srun = real(self, *args, **kwargs)
-        srun.metrics["frozen_objects"] = gc.get_freeze_count()
-        return srun
-
-    monkeypatch.setattr(worker_mod.WorkerState, "sense", sense)
-    ring = trimesh.creation.annulus(r_min=1.0, r_max=2.0, height=1.0, sections=32)
-    run = sense_mesh(ring, "ring", RunConfig(slices=3, jobs=1, eps=0.2))
-    counts = [s.metrics["frozen_objects"] for s in run.families[0].slices]
-    assert len(counts) == 3 and all(c > 1000 for c in counts)  # this process's objects
     assert gc.get_freeze_count() == 0

@@ -266,10 +266,9 @@ def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
     start_pt = np.where(swap[:, None], p_hi, p_lo)
     stop_pt = np.where(swap[:, None], p_lo, p_hi)
     order = np.argsort(start, kind="stable")
-    gaps, reach, reach_pt = [], stop[order[0]], stop_pt[order[0]]
+    gaps, reach, reach_pt, limit = [], stop[order[0]], stop_pt[order[0]], _chord_limit(res)
     for k in order[1:].tolist():
-        if start[k] - reach > res.fan_spacing and np.hypot(*(start_pt[k] - reach_pt)) < \
-                _chord_limit(res):
+        if start[k] - reach > res.fan_spacing and np.hypot(*(start_pt[k] - reach_pt)) < limit:
             gaps.append(np.array([reach_pt, start_pt[k]], dtype=float))
         if stop[k] > reach:
             reach, reach_pt = stop[k], stop_pt[k]

@@ -1,20 +1,16 @@
 """Passes aimed into the gaps a lid's touches leave (:class:`core2d.planner.touched.Fill`,
 :meth:`core2d.planner.reaim.Aim.toward`): checked on straight walls whose landings are
-computed here by intersecting lines, the cases where nothing is aimed, and the ``comb``
-outline whose slot wall the rule was read on (exact backend, eps 1)."""
+computed here by intersecting lines, the cases where nothing is aimed (exact backend,
+eps 1), and slot walls of the ``comb`` scene."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 import core2d.planner.touched as touched
-from core2d import SensorModel, sense_slice
 from core2d.planner.reaim import Aim
 from core2d.planner.touched import Fill, Touches
 from core2d.resolution import Resolution
-from core2d.truth.metrics import sensor_metrics
-from outlines import outline
-from slicer.contact.exact import ExactContact
 
 FINE = Resolution.of(1.0, noise=0.1)  # W2 distance 1.42 eps
 COARSE = Resolution.of(1.0, noise=0.3, taxel=0.25)  # W2 distance 2.52 eps
@@ -143,11 +139,15 @@ def test_a_gap_is_aimed_at_twice_at_most():
     assert made == 2 * len(t.open_gaps())
 
 
-def test_the_slot_wall_of_the_comb_outline_closes_w2_at_sigma_01(monkeypatch):
-    """``comb`` outline seed 1, sigma 0.1 eps, sensor seed 1001: a lid 5.7 eps down the
-    wall of a slot 1.45 eps wide, touched by 9 planned passes at 0.23, 0.48 - 0.50 and
-    0.98 of its length, ended ``unknown``; three passes into its gaps closed it W2.
-    Reachable coverage within eps/2 + 2 sigma without the Fill 0.9943, with it 0.9979."""
+def test_the_slot_walls_of_the_comb_scene_close_w2_at_sigma_01(monkeypatch):
+    """The ``comb`` scene's z-slice 4 of 8 at sigma 0.1 eps read once, keyed sensor seed
+    5004 (the keyed sensor study's repeat 5; Embree, eps = diagonal / 200): lids laid
+    down the walls of its slots, touched by the planned passes in a few places, are
+    closed W2 by passes into their gaps. Reachable coverage within eps/2 + 2 sigma
+    without the Fill 0.9600, with it 0.9678. Over that study (6 keyed seeds, 8 slices
+    of every scene, outline and mesh) the Fill raised 56 slice runs and lowered 8."""
+    from noisy_runs import scene_slice
+
     made, recorded = [], []
     nxt, record = Fill.next, Aim.record
 
@@ -162,15 +162,10 @@ def test_the_slot_wall_of_the_comb_outline_closes_w2_at_sigma_01(monkeypatch):
 
     monkeypatch.setattr(touched.Fill, "next", counted)
     monkeypatch.setattr(Aim, "record", kept)
-    loops = outline("comb", np.random.default_rng(1), 1.0)
-    pts = np.concatenate(loops)
-    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
-    res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 1001))
-    m = sensor_metrics(loops, res, 1.0, 0.1)
+    res, m = scene_slice("comb", 4, 0.1, 0.0, 5004, keyed=True)
     assert 0 < len(recorded) <= sum(made)  # (a pass a blocker stops is not made)
     closed = [r for r in res.areas if r.outcome == "W2" and "along the lid" in r.note]
     assert closed, "no lid closed W2 along its touches"
-    assert m["coverage_sensor"] >= 0.997, f"{m['coverage_sensor']:.4f}"
+    assert m["coverage_sensor"] >= 0.964, f"{m['coverage_sensor']:.4f}"
     assert m["precision_sensor"] >= 0.98
     assert m["w3_unsound_count_sensor"] == 0

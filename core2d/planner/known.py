@@ -326,7 +326,8 @@ class KnownContour:
         inner = pl[int(np.floor(s0)) + 1:int(np.ceil(s1))]
         return np.vstack([at(s0), inner, at(s1)])
 
-    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float) -> FreeLines:
+    def free_lines(self, a, b, spacing: float, margin: float, min_gap: float,
+                   along: float = 0.0) -> FreeLines:
         """Lines from F crossing the open lid A->B from its V side (Def. 3)
         past the recorded contour, one per lid sample with a free gap wider
         than ``min_gap``; empty when none is left (the W3 proof above).
@@ -334,13 +335,17 @@ class KnownContour:
         The lid is sampled every ``spacing`` (at most 512 samples), leaving
         ``margin`` at each touched end. The samples are solved as asked
         (:class:`~core2d.planner.lid_lines.FreeLines`: ``bool``, ``nearest``,
-        or the whole list).
+        or the whole list). With ``along`` > 0, segments whose two ends lie
+        within ``along`` of the lid's line block nothing.
         """
         a, b = np.asarray(a, float), np.asarray(b, float)
         ab = b - a
         n = float(np.hypot(*ab))
-        seg_a, seg_b = (self._a, self._b) if not self._soft.any() else (
-            self._a[~self._soft], self._b[~self._soft])
+        keep = ~self._soft
+        if along > 0 and n > 0:  # |cross(ab, p - a)| / |ab|: the distance to the line
+            keep &= ~((np.abs(cross2(ab, self._a - a)) <= along * n)
+                      & (np.abs(cross2(ab, self._b - a)) <= along * n))
+        seg_a, seg_b = (self._a, self._b) if keep.all() else (self._a[keep], self._b[keep])
         if n <= 2 * margin:
             none = np.zeros((0, 2))
             return FreeLines(none, none, np.zeros(0), seg_a, seg_b, min_gap)

@@ -49,7 +49,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 4. A lid that passed step 2 or the probing below is W3 only if the probe
    can hold it as a posture (:func:`~core2d.planner.w3_checks.holds_lid`: a W3 lid never passes
    through the solid; one it cannot hold gets swing passes under a coarse noisy sensor,
-   :func:`~core2d.planner.swing_passes.swing_lid`) and if it closes
+   :func:`~core2d.planner.swing_passes.swing_lid`; under a fine one, one more look
+   whose lines ignore the readings within the jitter of the lid's line: a wall's own
+   readings scattered into the slot in front of the lid hid it from every line) and if it closes
    a loop (:func:`~core2d.planner.w3_checks.closes_loop`): a chain of recorded pieces and such lids
    leads from B_i round to A_i, so A_i and B_i lie on one object and the lid
    bridges no islands (several hidden pockets of one loop close it
@@ -106,8 +108,8 @@ import numpy as np
 import shapely
 
 from core2d.planner.areas import Area
-from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, steep_enough,
-                                    sweep_length)
+from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
+                                    steep_enough, sweep_length)
 from core2d.planner.mouths import end_chords, record_gaps, traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES, PassPlan, spread, sweep
@@ -131,13 +133,15 @@ def lid_like(run: Exploration, area) -> bool:
     return not run.known.crosses(area.a, area.b, run.res.tip_zone)
 
 
-def proof_lines(run: Exploration, area):
+def proof_lines(run: Exploration, area, along: float = 0.0):
     """Free lines from F through the lid past the recorded contour, at lid
     samples farther than eps/2 from the touched ends: the W3 proof of step 2
-    holds when there is none."""
+    holds when there is none. ``along``: readings within it of the lid's
+    line block nothing (:func:`revisit`)."""
     soften_passed(run)  # W2 chords the probe went through: openings (core2d.planner.openings)
     return run.known.free_lines(area.a, area.b, spacing=run.eps / 2,
-                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol)
+                                margin=lid_end_radius(run.res, area.dist), min_gap=run.angle_tol,
+                                along=along)
 
 
 def _near_end(run: Exploration, area, point, radius=None) -> bool:
@@ -225,11 +229,12 @@ def reversed_lid(run: Exploration, area) -> bool:
     return bool(shapely.hausdorff_distance(lid, shapely.linestrings(chain)) <= run.res.tip_zone)
 
 
-def revisit_one(run: Exploration, area):
+def revisit_one(run: Exploration, area, along: float = 0.0):
     """Look at one deferred area again (steps 1-3, 5 of the module doc).
 
     Returns a W3 reason when the lid passed its proof or its probing and
-    waits for step 4, else None (the area was closed, split or deferred)."""
+    waits for step 4, else None (the area was closed, split or deferred).
+    ``along``: of :func:`proof_lines`."""
     probe, known = run.probe, run.known
     gaps = traced_gaps(known, area.a, area.b, run.res.tip_zone, run.res)
     if gaps is not None:
@@ -242,7 +247,7 @@ def revisit_one(run: Exploration, area):
                     + record_gaps(known, area.a, area.b, run.res))
             return run.close(area, "traced", note, pieces={"W2": gaps} if gaps else None)
     candidate = lid_like(run, area)
-    lines = proof_lines(run, area)
+    lines = proof_lines(run, area, along)
     if not lines and candidate:
         return "no line from F crosses the lid past the recorded contour"
     if lines:  # the spread passes, then (a W3 candidate) the sweep: each planned when next
@@ -334,7 +339,9 @@ def revisit(run: Exploration) -> None:
             continue
         if holds_lid(run, area):
             run.waiting.append((area, why + "; the probe held the lid"))
-        elif not swing_lid(run, area):
+        elif not swing_lid(run, area) and (  # fine: once more, past the wall's readings
+                not resolves_half_eps(run.res)
+                or revisit_one(run, area, run.res.jitter) is not None):
             run.close(area, "unknown", why + ", but the probe cannot hold the lid")
     if not run.waiting:
         return

@@ -190,12 +190,14 @@ class Fill:
     touches (A_i and B_i included), from its own landings (:meth:`Aim.toward
     <core2d.planner.reaim.Aim.toward>`), until every neighbour lies within the W2
     distance (:meth:`Touches.closes`: W2 along them), a gap was aimed at twice, the
-    widest gap is out of the landings' reach, or ``cap`` passes are made. ``comb``
-    outline seed 1 at sigma 0.1 eps, sensor seed 1001: a lid 5.7 eps down the wall of a
-    slot 1.45 eps wide, 9 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
+    widest gap is out of the landings' reach, or ``cap`` passes are made. Where it was
+    read: the ``comb`` outline seed 1 at sigma 0.1 eps, a lid 5.7 eps down the wall of
+    a slot 1.45 eps wide, 9 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
     its length; three passes aimed at 0.74, 0.86 and 0.36 landed at 0.73, 0.86 and
-    0.37, and the lid closed W2 along its touches (reachable coverage within eps/2 +
-    2 sigma 0.9943 -> 0.9979). Every contact is judged as a planned pass's is (a new
+    0.37, and the lid closed W2 along its touches. Over the keyed sensor study at sigma
+    0.1 eps (6 seeds, 8 slices of every case) it raises 56 slice runs' reachable
+    coverage and lowers 8 (p = 6e-10), most on the ``comb`` scene's slot walls, for
+    0.3 % more motions. Every contact is judged as a planned pass's is (a new
     one splits the area, §4.4); the landings only steer where the robot looks. Nothing
     acts before a pass touched the lid's middle (:meth:`Touches.middle_touched`) and
     landed on its line (the Aim's series): a lid no pass reached, or one whose passes

@@ -1,9 +1,9 @@
-"""The revisit of dead ends with a noisy sensor (sigma = 0.3 eps, taxels
-0.25 eps, seeded; exact backend, eps 1): the rule of
-:mod:`core2d.planner.revisit` that only a noisy sensor switches on,
-:func:`~core2d.planner.revisit.in_reach` -- a pass's contact met in front
-of the lid, farther from it than half its length, does not split the area
-(it would lay lids across material).
+"""The revisit of dead ends with a noisy sensor (seeded; exact backend, eps 1): the
+rules of :mod:`core2d.planner.revisit` that only a noisy sensor switches on.
+:func:`~core2d.planner.revisit.in_reach` (sigma 0.3 eps, taxels 0.25 eps): a pass's
+contact met in front of the lid, farther from it than half its length, does not split
+the area (it would lay lids across material). A lid a fine sensor cannot hold is looked
+at once more with lines past the readings along its own line (sigma 0.1 eps).
 """
 from __future__ import annotations
 

@@ -84,8 +84,11 @@ def test_perfect_and_coarse_sensing_keep_the_robot_as_it_is(res):
 
 
 def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
-    """``comb`` outline seed 1, sensor seed 1001 (the mouth of the module doc): 0.976
-    with the chord blocking the passes, 0.994 when the robot reads it as an opening."""
+    """``comb`` outline seed 1, keyed sensor seed 4001 (the keyed sensor study's repeat
+    4): 0.9717 with a W2 chord the probe went through blocking the passes, 0.9969 when
+    the robot reads it as an opening. Found by the rule on the one-stream seed 1001 (the
+    mouth of the module doc: 0.976 and 0.994 then); keyed, over sensor seeds 1, 1001,
+    ..., 7001 it acts on this one, and on none of ``comb`` seed 0's eight."""
     from noisy_runs import coverages
     from outlines import outline
 
@@ -93,7 +96,7 @@ def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
     pts = np.concatenate(loops)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    (cov,) = coverages(loops, ws, 0.1, [1001])
+    (cov,) = coverages(loops, ws, 0.1, [4001], keyed=True)
     assert cov >= 0.99, cov
 
 

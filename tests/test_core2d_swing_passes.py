@@ -120,9 +120,9 @@ def test_swing_passes_touch_the_slot_walls_no_straight_pass_reaches(monkeypatch)
 
 
 def test_a_fine_sensor_makes_no_swing_pass(monkeypatch):
-    """Sigma 0.1 eps: two lids on this slice are crossed by no line and not held, but a
-    sensor whose readings resolve eps/2 gained nothing from swing passes over six seeds
-    (case runs 192 -> 191): none is made."""
+    """Sigma 0.1 eps, keyed sensor seed 7005: three lids on this slice are crossed by
+    no line and not held, but a sensor whose readings resolve eps/2 gained nothing from
+    swing passes over six seeds (case runs 192 -> 191): none is made."""
     held = []
     original = revisit.holds_lid
 
@@ -132,6 +132,6 @@ def test_a_fine_sensor_makes_no_swing_pass(monkeypatch):
         return ok
 
     monkeypatch.setattr(revisit, "holds_lid", holds)
-    _, _, _, made, _ = _deep_slot(monkeypatch, 0.1, 0.0, 5)
+    _, _, _, made, _ = _deep_slot(monkeypatch, 0.1, 0.0, 7005, keyed=True)
     assert held.count(False) >= 1  # the case the rule would act on is there
     assert made == []

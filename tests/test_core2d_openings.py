@@ -103,8 +103,12 @@ def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
 @pytest.mark.skipif(not (SHARED / "meshes" / "trimesh_octagonal_pocket.stl").exists(),
                     reason="needs ../shared/meshes/trimesh_octagonal_pocket.stl")
 def test_the_octagonal_pockets_slit_at_sigma_01():
-    """z1 of 8, sensor seed 2001: the slit 1.26 eps wide between the thin outer wall and
-    the body; 64.5 eps of the body's face never touched (0.841) before."""
+    """z1 of 8, keyed sensor seed 1 (the keyed sensor study's repeat 0): the slit 1.26 eps
+    wide between the thin outer wall and the body. Reachable coverage within eps/2 + 2
+    sigma 0.9343 with the W2 chords the probe went through blocking the passes, 0.9951
+    when the robot reads them as openings (keyed seeds 2001 and 5001: 0.9581 -> 0.9727,
+    0.9298 -> 0.9720; the other three the same). Found on the one-stream seed 2001, where
+    64.5 eps of the body's face were never touched (0.841) before."""
     import meshes
     import slicer
     from core2d import SensorModel, sense_slice
@@ -116,9 +120,9 @@ def test_the_octagonal_pockets_slit_at_sigma_01():
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     res = sense_slice(cut.contact("embree"), (center, radius + eps), eps, max_motions=20000,
-                      sensor=SensorModel.of_eps(eps, 0.1, 0.0, 2001))
+                      sensor=SensorModel.of_eps(eps, 0.1, 0.0, 1, keyed=True))
     m = sensor_metrics(loops, res, eps, 0.1 * eps)
-    assert m["coverage_sensor"] >= 0.95, m["coverage_sensor"]
+    assert m["coverage_sensor"] >= 0.99, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
 
 

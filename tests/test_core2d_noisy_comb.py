@@ -1,5 +1,5 @@
-"""Deep slots a few eps wide under a noisy sensor (sigma = 0.1 eps, exact
-backend, eps 1): the rules of :mod:`core2d.planner.grazing`.
+"""Deep slots a few eps wide under a noisy sensor (sigma = 0.1 eps, one case at
+0.3 eps with taxels; exact backend, eps 1): the rules of :mod:`core2d.planner.grazing`.
 
 The constructed comb below has slots 6, 4, 2.5 and 1.5 eps wide and 40 eps
 deep (the built-in ``comb`` scene: gaps 19 ... 0.3 eps, 84 eps deep, where
@@ -73,6 +73,10 @@ def test_blockers_stop_passes_through_the_spot_a_pass_stopped_at_in_front():
     down = np.array([0.0, -1.0])
     assert blk.stops([5.3, 0.0], down)  # passes 0.3 from the blocker
     assert not blk.stops([7.0, 0.0], down)
+    blk.add(a, b, joint=[9.0, 50.0], point=[8.6, 0.1])  # stopped a hair in front of the lid
+    assert len(blk.points) == 2
+    assert not blk.stops([9.1, 0.0], down)  # 0.51 from the sample: contour at the lid
+    assert blk.stops([9.5, 0.0], np.array([0.8, -0.6]))  # 0.46 from it, 0.91 from the sample
     off = Blockers.of(Resolution.of(1.0), reach=100.0)  # perfect sensing: inactive
     off.add(a, b, joint=[5.0, 50.0], point=[5.0, 20.0])
     assert not off.stops([5.0, 0.0], down)
@@ -92,3 +96,20 @@ def test_grazing_passes_that_end_at_a_touched_end_prove_no_w3():
     m = sensor_metrics(loops, res, 1.0, 0.1)
     assert m["w3_unsound_count_sensor"] == 0
     assert m["precision_sensor"] >= 0.98
+
+
+def test_a_pass_beside_a_blocker_at_the_lid_enters_the_slot():
+    """The ``comb`` outline (seed 0) at sigma 0.3 eps, taxels 0.25 eps, 15 reads, keyed
+    sensor seed 1000 (the keyed sensor study's repeat 1): a lid along the top face
+    spans the mouth of a slot 1.85 eps wide and 15 deep. The first pass stopped on the
+    slot's corner, 0.51 eps from the lid sample of the one pass straight down the mouth;
+    counted as a blocker there, it stopped that pass and the slot was never entered
+    (0.969). A blocker within its radius of the sample is contour at the lid."""
+    loops = outline("comb", np.random.default_rng(0), 1.0)
+    pts = np.concatenate(loops)
+    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
+    res = sense_slice(ExactContact(loops), ws, 1.0,
+                      sensor=SensorModel.of_eps(1.0, 0.3, 0.25, 1000, keyed=True, reads=15))
+    m = sensor_metrics(loops, res, 1.0, 0.3)
+    assert m["coverage_sensor"] >= 0.98, m["coverage_sensor"]
+    assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0

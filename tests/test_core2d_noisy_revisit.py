@@ -116,7 +116,7 @@ def test_a_wall_hidden_by_its_own_readings_gets_passes():
     repeat 3): lids along the left wall of a slot 0.94 eps wide and 35 deep, each hidden
     from the mouth by readings of that wall 0.2 - 0.3 eps off it. Without passes along
     lines that only those readings block, the wall ended unknown: coverage 0.9758; with
-    them, 0.9852."""
+    them, 0.9856."""
     loops, ws = _outline("comb", 0)
     res = sense_slice(ExactContact(loops), ws, 1.0,
                       sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 3000, keyed=True))

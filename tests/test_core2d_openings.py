@@ -105,10 +105,11 @@ def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
 def test_the_octagonal_pockets_slit_at_sigma_01():
     """z1 of 8, keyed sensor seed 1 (the keyed sensor study's repeat 0): the slit 1.26 eps
     wide between the thin outer wall and the body. Reachable coverage within eps/2 + 2
-    sigma 0.9343 with the W2 chords the probe went through blocking the passes, 0.9951
-    when the robot reads them as openings (keyed seeds 2001 and 5001: 0.9581 -> 0.9727,
-    0.9298 -> 0.9720; the other three the same). Found on the one-stream seed 2001, where
-    64.5 eps of the body's face were never touched (0.841) before."""
+    sigma 0.9675 with the W2 chords the probe went through blocking the passes, 0.9976
+    when the robot reads them as openings (at ``fac9939`` keyed seeds 2001 and 5001 also
+    gained, 0.9581 -> 0.9727 and 0.9298 -> 0.9720, three more the same). Found on the
+    one-stream seed 2001, where 64.5 eps of the body's face were never touched (0.841)
+    before."""
     import meshes
     import slicer
     from core2d import SensorModel, sense_slice

@@ -77,6 +77,7 @@ def test_blockers_stop_passes_through_the_spot_a_pass_stopped_at_in_front():
     assert len(blk.points) == 2
     assert not blk.stops([9.1, 0.0], down)  # 0.51 from the sample: contour at the lid
     assert blk.stops([9.5, 0.0], np.array([0.8, -0.6]))  # 0.46 from it, 0.91 from the sample
+    assert blk.off_lid(a, b, [5.0, 20.0]) and not blk.off_lid(a, b, [8.6, 0.1])
     off = Blockers.of(Resolution.of(1.0), reach=100.0)  # perfect sensing: inactive
     off.add(a, b, joint=[5.0, 50.0], point=[5.0, 20.0])
     assert not off.stops([5.0, 0.0], down)

@@ -3,7 +3,8 @@ rules of :mod:`core2d.planner.revisit` that only a noisy sensor switches on.
 :func:`~core2d.planner.revisit.in_reach` (sigma 0.3 eps, taxels 0.25 eps): a pass's
 contact met in front of the lid, farther from it than half its length, does not split
 the area (it would lay lids across material). A lid a fine sensor cannot hold is looked
-at once more with lines past the readings along its own line (sigma 0.1 eps).
+at once more with lines past the readings along its own line, and its passes stopped
+far in front turn the lines after them aside (sigma 0.1 eps).
 """
 from __future__ import annotations
 
@@ -122,4 +123,21 @@ def test_a_wall_hidden_by_its_own_readings_gets_passes():
                       sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 3000, keyed=True))
     m = sensor_metrics(loops, res, 1.0, 0.1)
     assert m["coverage_sensor"] >= 0.98, m["coverage_sensor"]
+    assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
+
+
+def test_passes_stopped_far_in_front_turn_the_next_lines_aside():
+    """``star-1`` at sigma 0.1 eps read once, keyed sensor seed 1001 (the sensor study's
+    repeat 1): lids along the upper wall of a slot 1.3 eps wide, 15 deep. Each lid
+    sample's widest free gap ran back through the star's body, into which a gap of the
+    record (the unknown lids of another slot) opened: the passes stopped on that slot,
+    49 eps in front, and their blockers stopped every later pass through the same gap,
+    while the lines down the slot were never planned (coverage 0.9878). A blocker now
+    closes its disc to the lid's lines (:meth:`~core2d.planner.lid_lines.FreeLines.block`):
+    the next lines come down the slot."""
+    loops, ws = _outline("star", 1)
+    res = sense_slice(ExactContact(loops), ws, 1.0,
+                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 1001, keyed=True))
+    m = sensor_metrics(loops, res, 1.0, 0.1)
+    assert m["coverage_sensor"] >= 0.99, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0

@@ -93,3 +93,45 @@ def test_joined_segments_once_per_lid(monkeypatch):
         lines.nearest(pos)
     lines.nearest_many([0.2, 0.4, 0.6])
     assert len(calls) == 1
+
+
+def _clear_of(line, centre, radius, reach=100.0):
+    """Does the pass along ``line`` (from F, ``reach`` long up to the lid) keep
+    farther than ``radius`` from ``centre``?"""
+    end = line.point
+    start = end - reach * line.direction
+    t = np.clip((centre - start) @ (end - start) / ((end - start) @ (end - start)), 0.0, 1.0)
+    return float(np.hypot(*(start + t * (end - start) - centre))) > radius
+
+
+def test_a_blocker_turns_the_line_out_of_its_disc():
+    """Nothing recorded: the line through the lid's middle runs straight down from F.
+    A pass stopped 5 above it (:class:`~core2d.planner.grazing.Blockers`) blocks a
+    disc there; the middle's line then runs clear of it, every sample solved again."""
+    known = KnownContour(join=0.05)
+    lines = known.free_lines([0.0, 0.0], [4.0, 0.0], spacing=0.5, margin=0.5, min_gap=0.1)
+    centre, radius = np.array([2.0, 5.0]), 0.5
+    before = lines.nearest(0.5)
+    assert not _clear_of(before, centre, radius)
+    lines.block(centre, radius)
+    assert not lines._solved.any()
+    after = lines.nearest(0.5)
+    assert after.along == before.along and _clear_of(after, centre, radius)
+    assert after.gap < before.gap
+
+
+def test_a_blocker_in_the_only_opening_leaves_no_line_and_no_spread_pass():
+    """A wall above the lid with one slit 0.6 wide over its middle: every free line goes
+    through the slit. A blocker filling the slit leaves none, and the spread plans no
+    pass (it used to ask a line of ``None``)."""
+    from core2d.planner.pass_plan import spread, sweep
+
+    known = KnownContour(join=0.05)
+    known.add([[-10.0, 1.0], [1.7, 1.0]])
+    known.add([[2.3, 1.0], [14.0, 1.0]])
+    a, b = np.array([0.0, 0.0]), np.array([4.0, 0.0])
+    lines = known.free_lines(a, b, spacing=0.1, margin=0.1, min_gap=0.3)
+    assert lines and len(list(spread(lines, a, b))) == 6
+    lines.block([2.0, 1.0], 0.5)
+    assert not lines
+    assert list(spread(lines, a, b)) == [] and list(sweep(lines, 4.0, 1.0)) == []

@@ -84,6 +84,19 @@ class FreeLines:
                                                          joined=self._joined)
             self._solved[idx] = True
 
+    def block(self, point, radius: float) -> None:
+        """Block the directions through a disc of ``radius`` round ``point`` (2,):
+        a contact where a pass stopped in front of the lid
+        (:class:`~core2d.planner.grazing.Blockers`). Two crossed segments
+        2 ``radius`` long stand for the disc; every sample is solved again."""
+        c = np.asarray(point, dtype=np.float64)
+        arm = np.array([[radius, 0.0], [0.0, radius]])
+        self.seg_a = np.concatenate([self.seg_a, c - arm])
+        self.seg_b = np.concatenate([self.seg_b, c + arm])
+        self.width[:], self.angle[:] = np.nan, np.nan
+        self._solved[:] = False
+        self._all, self._joined = None, None
+
     def _line(self, i) -> FreeLine:
         ang = self.angle[i]
         toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid

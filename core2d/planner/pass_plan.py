@@ -49,6 +49,8 @@ def spread(lines, a, b) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     ab = np.asarray(b, float) - a
     for pos, steer in PLAN:
         ln = lines.nearest(pos)
+        if ln is None:  # every line blocked by now (FreeLines.block)
+            return
         if steer == 0:
             yield ln.point, ln.direction
             continue
@@ -67,6 +69,8 @@ def sweep(lines, length: float, eps: float) -> Iterator[tuple[np.ndarray, np.nda
     positions = (np.arange(k) + 0.5) / k
     for s in range(0, k, SWEEP_CHUNK):
         for n, ln in enumerate(lines.nearest_many(positions[s:s + SWEEP_CHUNK]), start=s):
+            if ln is None:  # every line blocked by now (FreeLines.block)
+                return
             yield ln.point, ln.turned(0.25 + 0.5 * (n % 2))
 
 

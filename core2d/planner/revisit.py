@@ -41,7 +41,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    of its lid question unsolved). With a noisy
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
-   pass stopped in front of the lid, and contacts on the lid's line beyond
+   pass stopped in front of the lid (a spot off the lid is closed to its
+   later lines, which then take their next widest gap:
+   :meth:`~core2d.planner.lid_lines.FreeLines.block`), and contacts on the lid's line beyond
    its ends; and a pass that landed on the lid's line off its middle is
    made again along its line shifted sideways to land at the middle
    (:class:`~core2d.planner.reaim.Aim`, a noisy sensor whose jitter is
@@ -250,7 +252,9 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
     lines = proof_lines(run, area, along)
     if not lines and candidate:
         return "no line from F crosses the lid past the recorded contour"
+    blocked = None  # the lines that blockers narrow (FreeLines.block)
     if lines:  # the spread passes, then (a W3 candidate) the sweep: each planned when next
+        blocked = lines
         sources = [((p, d, None) for p, d in spread(lines, area.a, area.b))]
         if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
             sources.append((p, d, None) for p, d in sweep(lines, area.dist,
@@ -295,8 +299,10 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
         escaped |= c is None
         ends_only &= (c is not None and _near_end(run, area, c, run.res.sensor_tol)
                       and steep_enough(run.res, area.a, area.b, direction))
-        if c is not None and not _near_end(run, area, c):
-            blockers.add(area.a, area.b, pose_c.joint, c)
+        if c is not None and not _near_end(run, area, c) and blockers.add(
+                area.a, area.b, pose_c.joint, c) and blocked is not None and blockers.off_lid(
+                area.a, area.b, c):  # its disc closed to the lines after it
+            blocked.block(c, blockers.radius)
         if filling:  # a pass into a gap: its landing steers the next
             if c is not None:
                 aim.record(shift, c)

@@ -11,7 +11,10 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    so is a lid lying along contour recorded from B_i to A_i (a traced wall
    read backwards, :func:`reversed_lid`). An end farther than eps from the
    recorded contour is joined to it by a W2 chord
-   (:func:`~core2d.planner.mouths.traced_gaps`).
+   (:func:`~core2d.planner.mouths.traced_gaps`). With a noisy sensor a lid
+   that repeats one closed ``open`` before, each end another reading of that
+   lid's end, is closed ``open`` at once
+   (:func:`~core2d.planner.openings.repeats_opening`): its passes were made.
 2. The lid could be a W3 lid only if it crosses no recorded contour
    (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
    contour farther than eps/2 from its touched ends (:func:`proof_lines`)
@@ -113,7 +116,7 @@ from core2d.planner.areas import Area
 from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
                                     steep_enough, sweep_length)
 from core2d.planner.mouths import end_chords, record_gaps, traced_gaps
-from core2d.planner.openings import soften_passed
+from core2d.planner.openings import repeats_opening, soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
 from core2d.planner.pass_contacts import in_reach, splits_across_record
@@ -248,6 +251,8 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
             gaps = (end_chords(known, area.a, area.b, run.res)
                     + record_gaps(known, area.a, area.b, run.res))
             return run.close(area, "traced", note, pieces={"W2": gaps} if gaps else None)
+    if repeats_opening(run, area):  # the same gap, read again (core2d.planner.openings)
+        return run.close(area, "open", "the lid repeats an opening to F found before")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area, along)
     if not lines and candidate:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from core2d.planner.known import KnownContour
-from core2d.planner.openings import SweptRobot, crossed, repeats_opening, soften_passed
+from core2d.planner.openings import SweptRobot, crossed, soften_passed
 from core2d.planner.run import Budget, Exploration
 from core2d.resolution import Resolution
 
@@ -140,44 +140,3 @@ def test_the_wall_chords_of_a_narrow_slot_stay_closed():
     ws = (np.array([15.0, 20.0]), float(np.hypot(30.0, 40.0) / 2 + 1.0))
     covs = coverages([loop], ws, 0.1, [1, 2, 3])
     assert covs.min() >= 0.98, covs
-
-
-def _closed(outcome, a, b):
-    return SimpleNamespace(outcome=outcome, a=np.array(a, float), b=np.array(b, float))
-
-
-def test_a_lid_repeats_an_opening_when_both_ends_are_other_readings_of_its_ends():
-    """Same-contact radius eps/2 + jitter = 0.92 at sigma 0.1 eps."""
-    run = SimpleNamespace(res=FINE, result=SimpleNamespace(areas=[
-        _closed("open", [0.0, 0.0], [20.0, 0.0]), _closed("unknown", [0.0, 5.0], [20.0, 5.0])]))
-    lid = lambda a, b: SimpleNamespace(a=np.array(a, float), b=np.array(b, float))  # noqa: E731
-    assert repeats_opening(run, lid([0.5, 0.4], [19.4, -0.3]))
-    assert not repeats_opening(run, lid([20.0, 0.0], [0.0, 0.0]))  # the other side's lid
-    assert not repeats_opening(run, lid([0.5, 0.4], [18.5, 0.0]))  # B 1.5 away: another lid
-    assert not repeats_opening(run, lid([0.0, 5.0], [20.0, 5.0]))  # an unknown lid
-    perfect = SimpleNamespace(res=Resolution.of(1.0), result=run.result)
-    assert not repeats_opening(perfect, lid([0.0, 0.0], [20.0, 0.0]))  # §4.4 already
-
-
-def test_the_gaps_between_islands_are_probed_once_at_sigma_01():
-    """``islands`` outline seed 1, keyed sensor seed 2001 (the keyed sensor study's
-    repeat 2): lids across the gaps between the islands came back with their ends read
-    again and were probed again, 3,326 motions against 1,769 noiseless (1.88 x); with
-    the repeats closed as the openings they are, 3,004 (1.70 x) at the same coverage."""
-    from outlines import outline
-
-    from core2d import SensorModel, sense_slice
-    from core2d.truth.metrics import sensor_metrics
-    from slicer.contact.exact import ExactContact
-
-    loops = outline("islands", np.random.default_rng(1), 1.0)
-    pts = np.concatenate(loops)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    base = sense_slice(ExactContact(loops), ws, 1.0)
-    res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 2001, keyed=True))
-    repeats = [r for r in res.areas if r.note == "the lid repeats an opening to F found before"]
-    assert repeats
-    assert res.stats.motions <= 1.8 * base.stats.motions, (res.stats.motions, base.stats.motions)
-    assert sensor_metrics(loops, res, 1.0, 0.1)["coverage_sensor"] >= 0.99

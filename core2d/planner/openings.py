@@ -57,7 +57,7 @@ import numpy as np
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
     from core2d.planner.run import Exploration
 
-__all__ = ["SweptRobot", "crossed", "soften_passed", "repeats_opening", "MIN_SIN"]
+__all__ = ["SweptRobot", "crossed", "soften_passed", "MIN_SIN"]
 
 #: a sweep crosses a chord steeply when the sine of their angle is at least this (45°)
 MIN_SIN = np.sqrt(0.5)
@@ -163,21 +163,3 @@ def soften_passed(run: Exploration) -> int:
                 left.append([piece, total])
     run.band_w2 = sorted(left)
     return done
-
-
-def repeats_opening(run: Exploration, area) -> bool:
-    """With a noisy sensor: does the lid A_i -> B_i repeat a lid closed ``open`` before
-    (each end within the same-contact radius eps/2 + jitter of that lid's same end)?
-
-    An ``open`` lid is an opening to F that the revisit's passes (a spread and up to
-    a sweep's worth) found nothing new through. With perfect sensing a later area
-    with the same A_i and B_i repeats an ancestor and is never made (§4.4); with a
-    noisy sensor its ends are other readings of the same two contacts, and nothing
-    stops the flow from laying the lid again. On the ``islands`` outline seed 1 at
-    sigma 0.1 eps (keyed sensor seed 3001) lids across the gaps between islands came
-    back up to three times, each probed by 32 - 54 passes again."""
-    if run.res.jitter == 0:
-        return False
-    r = run.res.tip_zone
-    return any(rec.outcome == "open" and np.hypot(*(rec.a - area.a)) <= r
-               and np.hypot(*(rec.b - area.b)) <= r for rec in run.result.areas)

@@ -14,7 +14,7 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    (:func:`~core2d.planner.mouths.traced_gaps`). With a noisy sensor a lid
    that repeats one closed ``open`` before, each end another reading of that
    lid's end, is closed ``open`` at once
-   (:func:`~core2d.planner.openings.repeats_opening`): its passes were made.
+   (:func:`~core2d.planner.repeats.repeats_opening`): its passes were made.
 2. The lid could be a W3 lid only if it crosses no recorded contour
    (:func:`lid_like`). Then, if no straight line from F crosses the lid past the recorded
    contour farther than eps/2 from its touched ends (:func:`proof_lines`)
@@ -116,9 +116,10 @@ from core2d.planner.areas import Area
 from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
                                     steep_enough, sweep_length)
 from core2d.planner.mouths import end_chords, record_gaps, traced_gaps
-from core2d.planner.openings import repeats_opening, soften_passed
+from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
+from core2d.planner.repeats import repeats_opening
 from core2d.planner.pass_contacts import in_reach, splits_across_record
 from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.swing_passes import swing_gaps, swing_lid
@@ -251,7 +252,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
             gaps = (end_chords(known, area.a, area.b, run.res)
                     + record_gaps(known, area.a, area.b, run.res))
             return run.close(area, "traced", note, pieces={"W2": gaps} if gaps else None)
-    if repeats_opening(run, area):  # the same gap, read again (core2d.planner.openings)
+    if repeats_opening(run, area):  # the same gap read again (core2d.planner.repeats)
         return run.close(area, "open", "the lid repeats an opening to F found before")
     candidate = lid_like(run, area)
     lines = proof_lines(run, area, along)
@@ -322,6 +323,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
         return run.close(area, "unknown", "no line reaches the lid from either side, and it "
                                           "crosses recorded contour")
     if escaped:
+        run.openings.append((area.a, area.b))
         return run.close(area, "open", note + "; one left through it: an opening to F")
     part = touches.pieces() if touches is not None else None
     if touches is not None and (part is None or "unknown" in part) and not (

@@ -165,6 +165,7 @@ class Exploration:
         self.queue = deque()
         self.deferred = []
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
+        self.openings = []  # (A_i, B_i): lids the revisit closed open (core2d.planner.repeats)
         self.audits = 0
         self.mouths = []  # areas processed as mouths (core2d.planner.mouths)
         self.band_w2 = []  # [map piece, sweeps seen]: W2 chords longer than eps (openings)

@@ -32,20 +32,9 @@ def test_a_repeat_has_both_ends_within_the_same_contact_radius(a, b, repeat):
     assert repeats_opening(run, _lid(a, b)) == repeat
 
 
-def test_perfect_sensing_leaves_repeats_to_the_lineage_check():
+def test_perfect_sensing_is_left_as_it_is():
     run = SimpleNamespace(res=Resolution.of(1.0), openings=OPENINGS)
     assert not repeats_opening(run, _lid([0.0, 0.0], [20.0, 0.0]))
-
-
-def _islands(seed):
-    loops = outline("islands", np.random.default_rng(1), 1.0)
-    pts = np.concatenate(loops)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
-    base = sense_slice(ExactContact(loops), ws, 1.0)
-    res = sense_slice(ExactContact(loops), ws, 1.0,
-                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, seed, keyed=True))
-    return loops, base, res
 
 
 def test_the_gaps_between_islands_are_probed_once_at_sigma_01():
@@ -54,7 +43,13 @@ def test_the_gaps_between_islands_are_probed_once_at_sigma_01():
     again and were probed again, 3,326 motions against 1,769 noiseless (1.88 x); with
     the repeats closed as the openings they are, 3,004 (1.70 x), coverage 1.000 both
     ways."""
-    loops, base, res = _islands(2001)
+    loops = outline("islands", np.random.default_rng(1), 1.0)
+    pts = np.concatenate(loops)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
+    base = sense_slice(ExactContact(loops), ws, 1.0)
+    res = sense_slice(ExactContact(loops), ws, 1.0,
+                      sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 2001, keyed=True))
     assert any(r.note == "the lid repeats an opening to F found before" for r in res.areas)
     assert res.stats.motions <= 1.8 * base.stats.motions, (res.stats.motions, base.stats.motions)
     assert sensor_metrics(loops, res, 1.0, 0.1)["coverage_sensor"] >= 0.99

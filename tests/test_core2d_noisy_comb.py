@@ -114,3 +114,20 @@ def test_a_pass_beside_a_blocker_at_the_lid_enters_the_slot():
     m = sensor_metrics(loops, res, 1.0, 0.3)
     assert m["coverage_sensor"] >= 0.98, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
+
+
+def test_the_spread_enters_a_slot_whose_lid_is_free_over_its_mouth_only():
+    """The ``comb`` outline (seed 0) at sigma 0.1 eps read once, one stream with its own
+    seed 0 (the README's study): a lid along the top face, 6.3 eps long, is free only
+    over the mouth of a slot 1.85 eps wide at its B end. The spread's positions 0.5, 0.1
+    and 0.3 all fell on the first free sample, at the mouth's corner, and the passes
+    straight down the mouth were never made: the slot was never entered (0.9659).
+    Taking each free sample once per steer (``spread(distinct=True)``), they are:
+    0.9993."""
+    loops = outline("comb", np.random.default_rng(0), 1.0)
+    pts = np.concatenate(loops)
+    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
+    res = sense_slice(ExactContact(loops), ws, 1.0, sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 0))
+    m = sensor_metrics(loops, res, 1.0, 0.1)
+    assert m["coverage_sensor"] >= 0.99, m["coverage_sensor"]
+    assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0

@@ -135,3 +135,23 @@ def test_a_blocker_in_the_only_opening_leaves_no_line_and_no_spread_pass():
     lines.block([2.0, 1.0], 0.5)
     assert not lines
     assert list(spread(lines, a, b)) == [] and list(sweep(lines, 4.0, 1.0)) == []
+
+
+def test_a_distinct_spread_takes_other_free_samples_when_one_end_is_blocked():
+    """A wall in front of the lid's left two thirds: positions 0.5, 0.1 and 0.3 of
+    the spread all fall on the first free sample. With ``distinct`` (a noisy sensor)
+    each steer takes a sample once while free ones are left, so the passes go down
+    the free third instead of three times down its edge."""
+    from core2d.planner.pass_plan import PLAN, spread
+
+    known = KnownContour(join=0.05)
+    known.add([[-1.0, 0.05], [2.7, 0.05]])
+    a, b = np.array([0.0, 0.0]), np.array([4.0, 0.0])
+    args = dict(spacing=0.2, margin=0.1, min_gap=0.3)
+    plain = list(spread(known.free_lines(a, b, **args), a, b))
+    apart = list(spread(known.free_lines(a, b, **args), a, b, distinct=True))
+    assert len(plain) == len(apart) == len(PLAN)
+    middle = [k for k, (_, steer) in enumerate(PLAN) if steer == 0]  # positions 0.5, 0.3, 0.7
+    xs = lambda passes: [round(float(passes[k][0][0]), 6) for k in middle]  # noqa: E731
+    assert len(set(xs(plain))) < len(middle)  # one sample taken twice
+    assert len(set(xs(apart))) == len(middle)

@@ -102,12 +102,13 @@ class FreeLines:
         toward = -np.array([np.cos(ang), np.sin(ang)])  # from F to the lid
         return FreeLine(self.points[i], toward, float(self.width[i]), float(self.along[i]))
 
-    def nearest(self, pos: float) -> FreeLine | None:
+    def nearest(self, pos: float, skip=()) -> FreeLine | None:
         """The free line whose ``along`` is nearest ``pos`` (as ``argmin`` of
-        ``|along - pos|`` over the free lines in lid order), None if none."""
-        return self.nearest_many([pos])[0]
+        ``|along - pos|`` over the free lines in lid order), None if none;
+        ``skip``: ``along`` values of samples left out."""
+        return self.nearest_many([pos], skip)[0]
 
-    def nearest_many(self, positions) -> list:
+    def nearest_many(self, positions, skip=()) -> list:
         """:meth:`nearest` for every position of ``positions``, the samples
         of all positions solved together: each position's nearest sample
         first, the next nearest ones (2, 4, ... at a time) only where those
@@ -121,7 +122,8 @@ class FreeLines:
             left = []
             for q in todo:
                 batch = orders[q][start:start + step]
-                free = np.flatnonzero(self.width[batch] > self.min_gap)
+                free = np.flatnonzero((self.width[batch] > self.min_gap)
+                                      & ~np.isin(self.along[batch], skip))
                 if len(free):
                     found[q] = self._line(batch[free[0]])
                 elif start + step < len(orders[q]):

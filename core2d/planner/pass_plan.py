@@ -38,19 +38,25 @@ MAX_SWEEP = 48
 SWEEP_CHUNK = 8
 
 
-def spread(lines, a, b) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+def spread(lines, a, b, distinct: bool = False) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """Spread passes ``(point, direction)`` through the lid, in the order of
     :data:`PLAN`: for each planned position the nearest free lid sample, its
     direction at the middle of the free gap (steer 0) or at 0.1 / 0.9 of it,
     whichever edge leans towards B (steer +1) or A (steer -1). Each position is
-    solved when its pass is asked for.
+    solved when its pass is asked for. ``distinct`` (a noisy sensor): a sample
+    an earlier pass took with the same steer gives way to the nearest free one
+    not taken, while there is one -- when only one end of the lid is free,
+    the positions all fall on its first free sample.
 
     lines : FreeLines with a free line; a, b : (2,) float -- A_i and B_i."""
     ab = np.asarray(b, float) - a
+    taken = {-1.0: [], 0.0: [], 1.0: []}
     for pos, steer in PLAN:
-        ln = lines.nearest(pos)
+        ln = lines.nearest(pos, taken[steer]) if distinct else None
+        ln = ln or lines.nearest(pos)
         if ln is None:  # every line blocked by now (FreeLines.block)
             return
+        taken[steer].append(ln.along)
         if steer == 0:
             yield ln.point, ln.direction
             continue

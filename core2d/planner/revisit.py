@@ -261,7 +261,8 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
     blocked = None  # the lines that blockers narrow (FreeLines.block)
     if lines:  # the spread passes, then (a W3 candidate) the sweep: each planned when next
         blocked = lines
-        sources = [((p, d, None) for p, d in spread(lines, area.a, area.b))]
+        sources = [((p, d, None) for p, d in spread(lines, area.a, area.b,
+                                                    distinct=run.res.jitter > 0))]
         if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
             sources.append((p, d, None) for p, d in sweep(lines, area.dist,
                                                           sweep_length(run.res))

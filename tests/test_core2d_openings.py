@@ -85,10 +85,11 @@ def test_perfect_and_coarse_sensing_keep_the_robot_as_it_is(res):
 
 def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
     """``comb`` outline seed 1, keyed sensor seed 4001 (the keyed sensor study's repeat
-    4): 0.9717 with a W2 chord the probe went through blocking the passes, 0.9969 when
-    the robot reads it as an opening. Found by the rule on the one-stream seed 1001 (the
-    mouth of the module doc: 0.976 and 0.994 then); keyed, over sensor seeds 1, 1001,
-    ..., 7001 it acts on this one, and on none of ``comb`` seed 0's eight."""
+    4): 0.9717 with a W2 chord the probe went through blocking the passes, 0.9964 when
+    the robot reads it as an opening (at ``4c8a2be``; 0.9969 at ``a84c8f6``). Found by
+    the rule on the one-stream seed 1001 (the mouth of the module doc: 0.976 and 0.994
+    then); keyed, over sensor seeds 1, 1001, ..., 7001 it acts on this one, and on none
+    of ``comb`` seed 0's eight."""
     from noisy_runs import coverages
     from outlines import outline
 
@@ -105,8 +106,9 @@ def test_the_far_wall_of_a_slot_behind_a_w2_mouth_is_touched_at_sigma_01():
 def test_the_octagonal_pockets_slit_at_sigma_01():
     """z1 of 8, keyed sensor seed 1 (the keyed sensor study's repeat 0): the slit 1.26 eps
     wide between the thin outer wall and the body. Reachable coverage within eps/2 + 2
-    sigma 0.9675 with the W2 chords the probe went through blocking the passes, 0.9976
-    when the robot reads them as openings (at ``fac9939`` keyed seeds 2001 and 5001 also
+    sigma 0.9451 with the W2 chords the probe went through blocking the passes, 0.9983
+    when the robot reads them as openings, at ``4c8a2be`` (0.9675 and 0.9976 at
+    ``a84c8f6``; at ``fac9939`` keyed seeds 2001 and 5001 also
     gained, 0.9581 -> 0.9727 and 0.9298 -> 0.9720, three more the same). Found on the
     one-stream seed 2001, where 64.5 eps of the body's face were never touched (0.841)
     before."""

@@ -144,8 +144,10 @@ def test_the_slot_walls_of_the_comb_scene_close_w2_at_sigma_01(monkeypatch):
     5004 (the keyed sensor study's repeat 5; Embree, eps = diagonal / 200): lids laid
     down the walls of its slots, touched by the planned passes in a few places, are
     closed W2 by passes into their gaps. Reachable coverage within eps/2 + 2 sigma
-    without the Fill 0.9600, with it 0.9659. Over that study (6 keyed seeds, 8 slices
-    of every scene, outline and mesh) the Fill raised 56 slice runs and lowered 8."""
+    without the Fill 0.9809, with it 0.9854 at ``4c8a2be`` (0.9600 and 0.9659 at
+    ``a84c8f6``, before the rules of ``4702017`` .. ``4c8a2be`` raised both). Over the
+    keyed study at ``a84c8f6`` (6 seeds, 8 slices of every scene, outline and mesh) the
+    Fill raised 56 slice runs and lowered 8."""
     from noisy_runs import scene_slice
 
     made, recorded = [], []
@@ -166,6 +168,6 @@ def test_the_slot_walls_of_the_comb_scene_close_w2_at_sigma_01(monkeypatch):
     assert 0 < len(recorded) <= sum(made)  # (a pass a blocker stops is not made)
     closed = [r for r in res.areas if r.outcome == "W2" and "along the lid" in r.note]
     assert closed, "no lid closed W2 along its touches"
-    assert m["coverage_sensor"] >= 0.964, f"{m['coverage_sensor']:.4f}"
+    assert m["coverage_sensor"] >= 0.983, f"{m['coverage_sensor']:.4f}"
     assert m["precision_sensor"] >= 0.98
     assert m["w3_unsound_count_sensor"] == 0

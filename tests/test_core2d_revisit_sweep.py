@@ -83,8 +83,8 @@ def test_sweep_comes_after_the_spread_passes(monkeypatch):
         looks.append([area, area.tries, None])
         return one(run, area)
 
-    def swept(lines, length, eps):
-        for n, item in enumerate(sweep(lines, length, eps)):
+    def swept(lines, length, eps, **kw):
+        for n, item in enumerate(sweep(lines, length, eps, **kw)):
             if n == 0:
                 looks[-1][2] = looks[-1][0].tries
             yield item

@@ -33,9 +33,9 @@ def _run(monkeypatch, z, noise, taxel, seed, gaps=True):
         contacts.extend(touches.points[before:])
         return part
 
-    def sweep(lines, length, eps):
+    def sweep(lines, length, eps, **kw):
         spacings.append(eps)
-        return SWEEP(lines, length, eps)
+        return SWEEP(lines, length, eps, **kw)
 
     monkeypatch.setattr(revisit, "swing_gaps", swing_gaps)
     monkeypatch.setattr(revisit, "sweep", sweep)

@@ -77,15 +77,17 @@ def sweep(lines, length: float, eps: float,
     resolves eps/2 once a pass has left through the lid, which then cannot be W3
     (the eps/2 spacing is the W3 proof's): the passes left only look for what
     lies behind an opening. A coarser sensor sweeps (eps + jitter) / 2 apart
-    already (:func:`~core2d.planner.grazing.sweep_length`), and doubling that lost
-    a ring's far side (two 16-gons 13 eps across, sigma 0.3 eps, taxels 0.25 eps,
-    read once, seed 0: 0.994 -> 0.909). Keyed sensor study, six seeds, 8 slices of every case: at sigma 0.1
-    motions -4.3 % (meshes), -2.5 % (outlines), -0.7 % (scenes), coverage 5 slice
-    runs up and 10 down (``twin_posts``, at most -0.005: a split the finer sweep
-    found on the wall facing the gap), no case run crossing a target; at sigma 0.3 +
-    taxels 0.25 averaged over 15 reads (the fine path), 4 up and 3 down, ``vtk_42400-IDGH`` z2 + 5002 2.25 -> 1.75 x its
-    noiseless motions. Sweeping no more after an escape cost coverage without noise
-    (``twin_posts`` 1.0 -> 0.971, docs/notes/speed.md).
+    already (:func:`~core2d.planner.grazing.sweep_length`), and doubling that
+    lost a ring's far side (two 16-gons 13 eps across, sigma 0.3 eps, taxels
+    0.25 eps, read once, seed 0: 0.994 -> 0.909). Keyed sensor study, six seeds,
+    8 slices of every case: at sigma 0.1 motions -4.3 % (meshes), -2.5 %
+    (outlines), -0.7 % (scenes), coverage 5 slice runs up and 10 down
+    (``twin_posts``, at most -0.005: a split the finer sweep found on the wall
+    facing the gap), no case run crossing a target; at sigma 0.3 + taxels 0.25
+    averaged over 15 reads (the fine path), 4 up and 3 down,
+    ``vtk_42400-IDGH`` z2 + 5002 2.25 -> 1.75 x its noiseless motions. Sweeping
+    no more after an escape cost coverage without noise (``twin_posts`` 1.0 ->
+    0.971, docs/notes/speed.md).
 
     length : float -- Dist(A_i, B_i).
 

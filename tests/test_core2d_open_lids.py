@@ -1,5 +1,5 @@
 """The sweep through a lid a pass has left through, with a noisy sensor
-(:func:`core2d.planner.pass_plan.sweep`'s ``coarse``, :mod:`core2d.planner.revisit`)."""
+(:func:`core2d.planner.pass_plan.sweep`'s ``sparse``, :mod:`core2d.planner.revisit`)."""
 from __future__ import annotations
 
 from types import SimpleNamespace
@@ -24,20 +24,20 @@ class _Lines:
         return [SimpleNamespace(point=p, turned=lambda f: f) for p in positions]
 
 
-def test_a_coarse_sweep_takes_and_solves_every_other_position():
-    fine, coarse = _Lines(), _Lines()
+def test_a_sparse_sweep_takes_and_solves_every_other_position():
+    fine, sparse = _Lines(), _Lines()
     every = list(sweep(fine, 10.0, 1.0))
-    half = list(sweep(coarse, 10.0, 1.0, coarse=lambda: True))
+    half = list(sweep(sparse, 10.0, 1.0, sparse=lambda: True))
     assert len(every) == 20 and len(half) == 10
     assert [p for p, _ in half] == [p for p, _ in every[::2]]
-    assert coarse.solved == [p for p, _ in half]  # the positions left out are not solved
+    assert sparse.solved == [p for p, _ in half]  # the positions left out are not solved
     assert {t for _, t in half} == {0.25, 0.75}  # both steers kept
 
 
-def test_the_sweep_turns_coarse_when_asked():
-    """``coarse`` is asked before each pass: the sweep halves from the pass after it turns."""
+def test_the_sweep_turns_sparse_when_asked():
+    """``sparse`` is asked before each pass: the sweep halves from the pass after it turns."""
     state = {"escaped": False}
-    passes = sweep(_Lines(), 10.0, 1.0, coarse=lambda: state["escaped"])
+    passes = sweep(_Lines(), 10.0, 1.0, sparse=lambda: state["escaped"])
     first = [next(passes) for _ in range(3)]
     state["escaped"] = True
     rest = list(passes)

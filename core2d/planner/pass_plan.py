@@ -67,11 +67,11 @@ def spread(lines, a, b, distinct: bool = False) -> Iterator[tuple[np.ndarray, np
 
 
 def sweep(lines, length: float, eps: float,
-          coarse=lambda: False) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+          sparse=lambda: False) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """One pass every eps/2 along the lid (the nearest free sample), at most
     :data:`MAX_SWEEP`, alternately at 1/4 and 3/4 of its free gap; the positions
     solved :data:`SWEEP_CHUNK` at a time, as the passes are asked for.
-    ``coarse`` (asked before each pass): True when one pass every eps is enough
+    ``sparse`` (asked before each pass): True when one pass every eps is enough
     -- every other position is left out (and not solved), the steer
     alternating over those kept. The revisit asks it with a noisy sensor that
     resolves eps/2 once a pass has left through the lid, which then cannot be W3
@@ -97,19 +97,19 @@ def sweep(lines, length: float, eps: float,
     ...         return [NS(point=p, turned=lambda f: f) for p in pos]
     >>> [float(p) for p, _ in sweep(Lines(), 4.0, 1.0)]
     [0.0625, 0.1875, 0.3125, 0.4375, 0.5625, 0.6875, 0.8125, 0.9375]
-    >>> [(float(p), t) for p, t in sweep(Lines(), 4.0, 1.0, coarse=lambda: True)][:3]
+    >>> [(float(p), t) for p, t in sweep(Lines(), 4.0, 1.0, sparse=lambda: True)][:3]
     [(0.0625, 0.25), (0.3125, 0.75), (0.5625, 0.25)]
     """
     k = int(min(MAX_SWEEP, max(2, np.ceil(2 * length / eps))))
     positions = (np.arange(k) + 0.5) / k
     for s in range(0, k, SWEEP_CHUNK):
         idx = np.arange(s, min(k, s + SWEEP_CHUNK))
-        if coarse():
+        if sparse():
             idx = idx[idx % 2 == 0]
         for n, ln in zip(idx.tolist(), lines.nearest_many(positions[idx])):
             if ln is None:  # every line blocked by now (FreeLines.block)
                 return
-            if not coarse():
+            if not sparse():
                 yield ln.point, ln.turned(0.25 + 0.5 * (n % 2))
             elif n % 2 == 0:
                 yield ln.point, ln.turned(0.25 + 0.5 * (n // 2 % 2))

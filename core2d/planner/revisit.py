@@ -44,7 +44,7 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    of its lid question unsolved). With a noisy sensor that resolves eps/2,
    once a pass has left through the lid (it can no longer be W3: the sweep then
    looks only for what lies behind an opening, islands) the sweep goes on at one
-   pass every eps, the paper's resolution (``sweep(coarse=)``): noise makes many
+   pass every eps, the paper's resolution (``sweep(sparse=)``): noise makes many
    lids over the gaps between islands, and each swept them at eps/2. With a noisy
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
@@ -270,7 +270,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
         if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
             sources.append((p, d, None) for p, d in sweep(
                 lines, area.dist, sweep_length(run.res),
-                coarse=lambda: escaped and resolves_half_eps(run.res))  # an open lid
+                sparse=lambda: escaped and resolves_half_eps(run.res))  # an open lid
                            if steep_enough(run.res, area.a, area.b, d))
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,

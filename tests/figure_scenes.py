@@ -138,8 +138,8 @@ GRAZE_AWAY = np.array([-GRAZE_DIR[1], GRAZE_DIR[0]])  # unit normal, away from t
 #: distance of the roof corner of SLIT from the line through LIP_LEFT. A
 #: recorded posture passes tol/2 = 0.025 off the lip; for a single probe
 #: detection the planner comes back 2 tol = 0.1 farther from the lip
-#: (planner._single_detection), which leaves the roof corner 0.005 from the
-#: probe line: less than one angular step of the pivot about the tip.
+#: (core2d.planner.detection.single_detection), which leaves the roof corner
+#: 0.005 from the probe line: less than one angular step of the pivot about the tip.
 SLIT_GAP = 0.13
 
 

@@ -16,8 +16,9 @@ from shapely.geometry import LineString, Point
 from shapely.ops import unary_union
 
 from core2d import sense_slice
+from core2d.planner.detection import reestablish
 from core2d.planner.local_search import bisection, initial_pass
-from core2d.planner.run import STALE, _reestablish
+from core2d.planner.run import STALE
 from core2d.readings import LEFT, RIGHT, TIP
 from core2d.planner.regions import G_region, Posture, in_V, trace_direction
 from core2d.planner.tracing import is_internal, plan_sides, trace_side
@@ -96,8 +97,8 @@ def test_fig4_both_sides_cover_the_pocket():
     lines = []
     for k, toward_B in enumerate(plan_sides(local)[0]):
         if k:
-            assert _reestablish(probe, Posture(local.reading.joint,
-                                               local.reading.direction)).tip_contact
+            assert reestablish(probe, Posture(local.reading.joint,
+                                              local.reading.direction)).tip_contact
         more, new, cases, _ = trace_side(probe, area, G, joint_i, local, toward_B, always)
         assert cases == ["case1"]
         lines += more

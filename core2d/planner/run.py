@@ -43,23 +43,23 @@ import numpy as np
 
 from core2d.planar import magnitude
 from core2d.planner.denoise import smooth
-from core2d.planner.areas import Area, pivot_G, register
+from core2d.planner.areas import Area, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.budget import Budget
+from core2d.planner.detection import reestablish, single_detection, single_posture
 from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.mouths import close_unresolved, is_mouth, traced_gaps
 from core2d.planner.openings import SweptRobot
-from core2d.planner.regions import Posture, near_probe
+from core2d.planner.regions import Posture
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
 from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, split_contact,
                                     trace_side)
 from core2d.planner.w3_checks import closes_loop
-from core2d.readings import LEFT, RIGHT
 from core2d.result import AreaRecord, SliceResult
 
 __all__ = ["explore", "Exploration", "Budget", "back_at"]
@@ -70,41 +70,6 @@ STALE = 3
 
 def _same(p, q, tol):
     return magnitude(np.asarray(p, float) - np.asarray(q, float)) <= tol
-
-
-def _reestablish(probe: Robot, pose):
-    """Bring the probe back along the line of ``pose`` until the tip touches."""
-    probe.approach(pose.joint + probe.length * pose.direction, pose.direction)
-    return probe.insert(2.5 * probe.radius)
-
-
-def _single_posture(area, probe: Robot, same: float):
-    """The posture that touched both A_i and B_i within ``same`` (single
-    probe detection, Fig. 6), or None. Registration may store two postures a
-    step apart that both carry A and B -- that is still one detection."""
-    for pose in (area.pose_b, area.pose_a):
-        if all(near_probe(p, pose.joint, pose.direction, probe.length, same)
-               for p in (area.a, area.b)):
-            return pose
-    return None
-
-
-def _single_detection(probe: Robot, pose, area):
-    """Definition 1, Fig. 6(a), for an area whose A_i and B_i lie on one
-    recorded posture: bring the probe back to that posture -- along its line
-    shifted 2 tol away from the body contact, so the tip does not catch the
-    grazed corner -- then generate G_i by rotating about the tip. Returns
-    ``(G_i, ok)``: G_i is None when Area(G_i) = 0 (Fig. 6(b)); ``ok`` is
-    False when the posture could not be taken again (no tip contact)."""
-    t = pose.direction
-    n = np.array([-t[1], t[0]])
-    along = [(np.asarray(p) - pose.joint) @ t for p in (area.a, area.b)]
-    body_pt = (area.a, area.b)[int(np.argmin(along))]  # Def. 9: tip point is P_1st
-    side = 1.0 if (np.asarray(body_pt) - pose.joint) @ n >= 0 else -1.0
-    shifted = Posture(pose.joint - side * probe.resolution.near * n, t)
-    if _reestablish(probe, shifted).tip_contact is None:
-        return None, False
-    return pivot_G(probe, RIGHT if side > 0 else LEFT), True
 
 
 def back_at(res, reading, d_i) -> bool:
@@ -257,11 +222,11 @@ class Exploration:
         if area.zero_G:
             return self.zero_G(area)
         G = area.G
-        pose = None if G is not None or not self.flow.detection else _single_posture(
+        pose = None if G is not None or not self.flow.detection else single_posture(
             area, probe, same)
         if pose is not None:
             probe.note_phase("detection", area.index)
-            G, ok = _single_detection(probe, pose, area)
+            G, ok = single_detection(probe, pose, area)
             if ok and G is None:
                 return self.zero_G(area)
         probe.note_phase("escape" if area.escape else "initial_pass", area.index)
@@ -328,7 +293,7 @@ class Exploration:
             if self.flow.detection:
                 attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
-            if k and not back_at(self.res, _reestablish(probe, pose_d), local.point):
+            if k and not back_at(self.res, reestablish(probe, pose_d), local.point):
                 kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
                                      area.pose_a if not toward_B else area.pose_b,
                                      not toward_B, area.index, "limit", area.depth + 1))

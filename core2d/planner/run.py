@@ -4,9 +4,9 @@ The planner decides motions from sensor readings and from what it has
 recorded itself; it never sees the contour. Per unknown area A_iB_i:
 
 1. Dist(A_i, B_i) < eps  ->  W2 (§3.1, §4.4).
-2. Single probe detection (Fig. 6): G_i by rotating about the tip;
-   Area(G_i) = 0  ->  W3 (§4.2.1). This and the proof of
-   :mod:`core2d.planner.revisit` are the only ways to W3.
+2. Single probe detection (Fig. 6, :mod:`core2d.planner.detection`): G_i by
+   rotating about the tip; Area(G_i) = 0  ->  W3 (§4.2.1). This and the
+   proof of :mod:`core2d.planner.revisit` are the only ways to W3.
 3. Initial pass planning (Theorem 1) to a new contact C on Int(A_iB_i).
 4. Bisection local concave point search (Theorems 2, 3) to D_i. Infinite
    loop escape (§4.4) splits A_iB_i at C when the area repeats an ancestor's

@@ -72,8 +72,9 @@ def sweep(lines, length: float, eps: float,
     :data:`MAX_SWEEP`, alternately at 1/4 and 3/4 of its free gap; the positions
     solved :data:`SWEEP_CHUNK` at a time, as the passes are asked for.
     ``sparse`` (asked before each pass): True when one pass every eps is enough
-    -- every other position is left out (and not solved), the steer
-    alternating over those kept. The revisit asks it with a noisy sensor that
+    -- every other position is left out, the steer alternating over those kept;
+    the positions are solved a chunk at a time, so from the next chunk on the
+    ones left out are not solved either. The revisit asks it with a noisy sensor that
     resolves eps/2 once a pass has left through the lid, which then cannot be W3
     (the eps/2 spacing is the W3 proof's): the passes left only look for what
     lies behind an opening. A coarser sensor sweeps (eps + jitter) / 2 apart

@@ -10,12 +10,17 @@ of core2d agree on what "the same point" means.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
-__all__ = ["Resolution", "repeated_reads", "MAX_READS"]
+__all__ = ["Resolution", "repeated_reads", "MAX_READS", "AIM_READS"]
 
 MAX_READS = 64
 """The most reads :func:`repeated_reads` averages at one reading point."""
+
+AIM_READS = 16
+"""The most reads :func:`repeated_reads` takes to bring the means' noise towards tol / 2
+(16 ms of a 1 kHz skin at each reading point); more only where the fine path needs them."""
 
 
 @dataclass(frozen=True)
@@ -207,14 +212,36 @@ class Resolution:
 def repeated_reads(eps: float, noise: float, taxel: float = 0.0, tol: float | None = None,
                    cap: int = MAX_READS) -> int:
     """How many times the robot reads its sensors at each reading point and
-    averages them: the fewest N for which the means resolve eps/2
-    (:attr:`Resolution.resolves_half_eps` with noise / sqrt(N)), else 1.
+    averages them: enough for the means' noise to reach half the contact
+    resolution (N >= (2 noise / tol)^2) but at most :data:`AIM_READS`, and at
+    least the fewest N for which the means resolve eps/2
+    (:attr:`Resolution.resolves_half_eps` with noise / sqrt(N)), up to ``cap``;
+    1 where no N up to the cap resolves eps/2.
 
     A reading point is a posture the probe stands in (after a motion, at each
     micro-step of a compliant trace); reading the skin, the joint sensors and
     the torque sensor again there moves nothing. The mean of N independent
     Gaussian draws of standard deviation ``noise`` is one draw of
     noise / sqrt(N); the taxel's rounding is the same on every read and stays.
+
+    Why towards tol / 2: that is the planner's finest step (a guarded move
+    stops tol / 2 short of a contact, :attr:`Resolution.stop_short`; the
+    bisections' angular resolution is tol / 2 at the tip), so means scattered
+    less than it no longer move a decision the paper's searches make. The
+    fewest N that only just resolve eps/2 leave a jitter of up to eps/2 - tol:
+    at sigma 0.1 eps (one read, jitter 0.42 eps) the ``comb`` scene's
+    bisections slipped past a tooth's corner and the slots behind went
+    untraced (0.977 - 0.986 of the part eps resolves per sensor seed, against
+    0.9987 noiselessly); with 16 reads (the means' sigma 0.025 eps) 0.988 -
+    0.999, and the 8-slice study's slice runs went 196 up, 32 down
+    (docs/notes/noise.md).
+
+    Why at most 16 for that aim: a read costs no motion but costs time (1 ms of
+    a 1 kHz skin; 16 reads were 6.6 % of ``comb``'s robot time at sigma
+    0.1 eps), and going on to 64 reads at sigma 0.3 eps, taxels 0.25 eps moved
+    slice runs up (111 against 43) but no case run's target: 197 of 210
+    against 200 with 15 reads, the runs lost being sub-eps features that the
+    noiseless planner misses too.
 
     Why the fine path or nothing: the planner's rules for a sensor whose
     readings do not resolve eps/2 were measured at a jitter of 1.5 eps (sigma
@@ -223,11 +250,7 @@ def repeated_reads(eps: float, noise: float, taxel: float = 0.0, tol: float | No
     0.67 eps) the ``comb`` scene took 2.2 - 2.4 x its noiseless motions on six
     of six sensor seeds and hit the budget on 10 of 48 slices (keyed, 8
     slices). So reads that would bring the sensor only part of the way are not
-    taken. Averaged to the fine path (15 reads), sigma 0.3 eps with taxels
-    0.25 eps reads as sigma 0.077 eps: 198 of 210 case runs of the 8-slice
-    study (keyed, six sensor seeds) reached coverage 0.98 within eps/2 + 2
-    sigma, against 178 with one read, every one within 2 x its noiseless
-    motions and the budget (docs/notes/noise.md).
+    taken (docs/notes/noise.md).
 
     Parameters
     ----------
@@ -243,13 +266,15 @@ def repeated_reads(eps: float, noise: float, taxel: float = 0.0, tol: float | No
     Examples
     --------
     >>> repeated_reads(1.0, 0.3, 0.25), repeated_reads(1.0, 0.1), repeated_reads(1.0, 0.0, 0.25)
-    (15, 1, 1)
-    >>> repeated_reads(1.0, 0.1, 0.25), repeated_reads(1.0, 1.0)
-    (2, 1)
+    (16, 16, 1)
+    >>> repeated_reads(1.0, 0.03), repeated_reads(1.0, 0.5), repeated_reads(1.0, 1.0)
+    (2, 23, 1)
     """
-    if noise <= 0 or Resolution.of(eps, tol, noise, taxel).resolves_half_eps:
+    if noise <= 0:
         return 1
-    for n in range(2, int(cap) + 1):
+    aim = Resolution.of(eps, tol).stop_short
+    least = min(AIM_READS, max(1, math.ceil((noise / aim) ** 2 * (1.0 - 1e-9))))
+    for n in range(1, int(cap) + 1):
         if Resolution.of(eps, tol, noise / n ** 0.5, taxel).resolves_half_eps:
-            return n
+            return max(n, min(least, int(cap)))
     return 1

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from core2d import SensorModel, sense_slice
-from core2d.resolution import MAX_READS, Resolution, repeated_reads
+from core2d.resolution import AIM_READS, MAX_READS, Resolution, repeated_reads
 from core2d.sim.probe import Probe
 from core2d.sim.sensor import Sensor
 from slicer.contact.exact import ExactContact
@@ -16,23 +16,33 @@ SQUARE = [np.array([[-10.0, -10.0], [10.0, -10.0], [10.0, 0.0], [-10.0, 0.0]])]
 
 
 @pytest.mark.parametrize("noise, taxel, reads", [
-    (0.3, 0.25, 15), (0.3, 0.0, 8), (0.1, 0.25, 2), (0.5, 0.25, 42),
-    (0.1, 0.0, 1),    # already resolves eps/2: one read
+    (0.1, 0.0, 16), (0.1, 0.25, 16), (0.3, 0.0, 16), (0.03, 0.0, 2),  # aimed at tol / 2
+    (0.3, 0.25, 16),  # the aim's cap: the means' sigma 0.075 eps, which resolves eps/2
+    (0.5, 0.0, 23), (0.5, 0.25, 42), (0.1, 0.36, 23),  # the fine path needs more than the aim
+    (0.025, 0.0, 1),  # already within tol / 2: one read
     (0.0, 0.25, 1),   # taxels alone: nothing to average
     (0.0, 0.0, 1),    # the paper's perfect sensing
-    (1.0, 0.0, 1),    # 89 reads would be needed, over the cap: one read (module doc)
+    (1.0, 0.0, 1),    # even 64 reads leave the means short of eps/2 (89 needed): one read
     (0.1, 0.5, 1),    # taxels 0.5 eps never resolve eps/2, however many reads
 ])
-def test_the_fewest_reads_that_resolve_half_eps(noise, taxel, reads):
-    """N resolves eps/2 and N - 1 does not; where no N up to the cap does, one read."""
+def test_reads_aim_at_half_tol_and_resolve_half_eps(noise, taxel, reads):
+    """N is the larger of the aim (the fewest reads whose means scatter at most tol / 2, at
+    most AIM_READS) and the fewest that resolve eps/2; where no N up to the cap resolves
+    eps/2, one read."""
+    half_tol = 0.05 / 2
+
+    def fine(n):
+        return Resolution.of(1.0, None, noise / np.sqrt(n), taxel).resolves_half_eps
+
     assert repeated_reads(1.0, noise, taxel) == reads
-    fine = Resolution.of(1.0, None, noise / np.sqrt(reads), taxel).resolves_half_eps
     if reads > 1:
-        assert fine and not Resolution.of(1.0, None, noise / np.sqrt(reads - 1),
-                                          taxel).resolves_half_eps
+        assert fine(reads)
+        aimed = noise / np.sqrt(reads) <= half_tol * (1 + 1e-12) or reads >= AIM_READS
+        assert aimed or not fine(reads - 1)  # else the fewest that resolve eps/2
+        assert not fine(reads - 1) or (noise / np.sqrt(reads - 1) > half_tol
+                                       and reads - 1 < AIM_READS)
     elif noise > 0:
-        cap = Resolution.of(1.0, None, noise / np.sqrt(MAX_READS), taxel).resolves_half_eps
-        assert fine or not cap
+        assert (fine(1) and noise <= half_tol) or not fine(MAX_READS)
     # scale-free: the same count in any unit
     assert repeated_reads(2.5, 2.5 * noise, 2.5 * taxel) == reads
 
@@ -84,7 +94,7 @@ def test_every_read_is_counted_and_perfect_sensing_reads_nothing():
 
 @pytest.mark.filterwarnings("ignore:eps 1.5 is")
 def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
-    """``recon3d.run`` with noise 0.3 and taxels 0.25 averages 15 reads (``reads='auto'``),
+    """``recon3d.run`` with noise 0.3 and taxels 0.25 averages 16 reads (``reads='auto'``),
     ``reads=1`` one; metrics.json says which, and each slice's robot time is the stated
     rule: joint path / speed + motions x overhead + sensor reads x read time."""
     import trimesh
@@ -94,7 +104,7 @@ def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
     box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
     kw = dict(slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25, seed=1)
     auto, one = recon3d.run(box, **kw), recon3d.run(box, reads=1, read_time=0.01, **kw)
-    assert auto.metrics["sensor"]["reads"] == 15 and one.metrics["sensor"]["reads"] == 1
+    assert auto.metrics["sensor"]["reads"] == 16 and one.metrics["sensor"]["reads"] == 1
     robot = auto.metrics["robot"]
     assert robot["read_time_s"] == 0.001 and "sensor_reads" in robot["rule"]
     for run, read_time in ((auto, 0.001), (one, 0.01)):
@@ -103,8 +113,8 @@ def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
             assert s["robot_time_s"] == pytest.approx(
                 s["joint_path"] / robot["probe_speed"] + s["motions"] * 0.2
                 + s["sensor_reads"] * read_time)
-    assert all(s["sensor_reads"] % 15 == 0 for s in auto.metrics["slices"])
-    assert auto.sensing.read_noise == pytest.approx(0.3 / np.sqrt(15))
+    assert all(s["sensor_reads"] % 16 == 0 for s in auto.metrics["slices"])
+    assert auto.sensing.read_noise == pytest.approx(0.3 / np.sqrt(16))
     assert one.sensing.read_noise == 0.3
     perfect = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact")
     assert all("sensor_reads" not in s for s in perfect.metrics["slices"])
@@ -115,7 +125,7 @@ def test_recon3d_run_averages_by_default_records_it_and_charges_the_reads():
         return next(ln for ln in summary_lines(run) if "robot time" in ln)
 
     reads = auto.metrics["total"]["sensor_reads"]
-    assert f"+ {reads} sensor reads x 0.001 s, 15 per reading point)" in cost(auto)
+    assert f"+ {reads} sensor reads x 0.001 s, 16 per reading point)" in cost(auto)
     assert "sensor reads" not in cost(perfect)
 
 
@@ -194,5 +204,6 @@ def test_the_surface_closes_the_slices_at_the_scatter_of_the_means(monkeypatch):
     monkeypatch.setattr(rec, "closure_lengths", spy)
     box = trimesh.creation.box(extents=[20.0, 10.0, 10.0])
     res = recon3d.run(box, slices=2, eps=1.5, jobs=1, backend="exact", noise=0.3, taxel=0.25)
-    assert seen and all(n == pytest.approx(0.3 / np.sqrt(15)) for n in seen)
+    assert seen and all(n == pytest.approx(0.3 / np.sqrt(repeated_reads(1.0, 0.3, 0.25)))
+                        for n in seen)
     assert res.surface is not None

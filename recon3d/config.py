@@ -158,15 +158,17 @@ class RunConfig:
     reads: int | Literal["auto"] = param(
         "auto", parse=parse_count_or_auto, metavar="N", shown_default="`auto`",
         check=check_reads,
-        help="reads of the sensors averaged at each reading point (default auto: as many as "
-        "make two readings of one point resolve eps/2, else one; at most 64)",
+        help="reads of the sensors averaged at each reading point (default auto: at least as "
+        "many as make two readings of one point resolve eps/2, up to 16 towards means "
+        "scattered by tol/2; one where no N up to 64 resolves eps/2)",
         doc=(("the robot reads its skin, joint and torque sensors N times where it stands "
               "(after a motion, at each step of a compliant trace) and averages them: the "
               "noise of the means is S / sqrt(N), the taxels' rounding stays; the planner is "
               "told that noise"),
-             ("auto", "the fewest N that bring two readings of one point within eps/2 "
-              "(`core2d.resolution.repeated_reads`: 15 at `--noise 0.3 --taxel 0.25`, 1 at "
-              "`--noise 0.1`), else 1")))
+             ("auto", "at least the fewest N that bring two readings of one point within "
+              "eps/2, and up to 16 towards means scattered by tol / 2 at most "
+              "(`core2d.resolution.repeated_reads`: 16 at `--noise 0.1` and at `--noise 0.3 "
+              "--taxel 0.25`, 23 at `--noise 0.5`); 1 where no N up to 64 resolves eps/2")))
     read_time: float = param(
         0.001, parse=float, metavar="S", shown_default="0.001",
         check=lambda v, n: positive(v, n, allow_zero=True),

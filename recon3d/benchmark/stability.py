@@ -11,7 +11,8 @@ Factors (one task each value, :func:`run_factor`):
   noise model), ``fig18_overhangs``, every method (:data:`SENSOR_METHODS`:
   the three backends, finger probing, the paper's flow, the contour follower),
   each reading point averaged over the reads ``recon3d run`` takes by default
-  (:func:`core2d.resolution.repeated_reads`: 8 at sigma 0.3 eps, else 1);
+  (:func:`core2d.resolution.repeated_reads`: 2 at sigma 0.03 eps, 16 at 0.1 and
+  0.3 eps, else 1);
 * ``taxel`` -- its taxel spacing 0 ... eps, ``fig18_overhangs``, every method;
 * ``resolution`` -- ``bowl`` at 4 tessellations (3D F@1% for pulling);
 * ``rotation x|y|z`` -- ``fig18_overhangs`` rotated about each axis (3D F@1%);

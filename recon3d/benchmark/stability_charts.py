@@ -188,7 +188,7 @@ def sensor_chart(rows, path, factors=SENSOR_FACTORS) -> None:
     fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=10)
     fig.suptitle("A real sensor (core2d.SensorModel): the middle z-slice of fig18_overhangs, "
                  "eps = diagonal / 50, the planner told sigma and the taxel spacing\n"
-                 "(each reading point averaged as recon3d run does: 8 reads at sigma 0.3 eps, "
-                 "else 1)")
+                 "(each reading point averaged as recon3d run does: 2 reads at sigma 0.03 eps, "
+                 "16 at 0.1 and 0.3 eps, else 1)")
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -158,9 +158,8 @@ class RunConfig:
     reads: int | Literal["auto"] = param(
         "auto", parse=parse_count_or_auto, metavar="N", shown_default="`auto`",
         check=check_reads,
-        help="reads of the sensors averaged at each reading point (default auto: at least as "
-        "many as make two readings of one point resolve eps/2, up to 16 towards means "
-        "scattered by tol/2; one where no N up to 64 resolves eps/2)",
+        help="reads averaged at each reading point (default auto: the fewest that resolve "
+        "eps/2, up to 16 towards means scattered by tol/2; 1 where 64 do not resolve eps/2)",
         doc=(("the robot reads its skin, joint and torque sensors N times where it stands "
               "(after a motion, at each step of a compliant trace) and averages them: the "
               "noise of the means is S / sqrt(N), the taxels' rounding stays; the planner is "

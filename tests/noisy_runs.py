@@ -44,10 +44,11 @@ def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
 
 
 def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
-                keyed: bool = False):
+                keyed: bool = False, reads: int = 1):
     """Sense z-slice ``index`` of 8 of the built-in scene ``name`` (Embree,
     eps = diagonal / 200) with the sensor (``noise`` and ``taxel`` in eps,
-    ``seed``; ``keyed`` draws), as the sensor study does; returns the result and
+    ``seed``; ``keyed`` draws; ``reads`` averaged per reading point), as the sensor study
+    does; returns the result and
     :func:`~core2d.truth.metrics.sensor_metrics` of it."""
     import meshes
     import slicer
@@ -58,5 +59,6 @@ def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
     center, radius = cut.bounding_circle()
     loops = [np.asarray(lp) for lp in cut.loops]
     res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
-                      sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed))
+                      sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed,
+                                                reads=reads))
     return res, sensor_metrics(loops, res, eps, noise * eps)

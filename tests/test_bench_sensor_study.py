@@ -103,8 +103,7 @@ def test_the_band_leaves_out_a_slot_the_sensor_reads_as_w2():
     import numpy as np
 
     from bench.sensor_study import _score
-    from core2d.resolution import repeated_reads
-    from core2d.resolution import Resolution
+    from core2d.resolution import Resolution, repeated_reads
     from slicer import ExactContact
 
     w, d = 1.5, 6.0

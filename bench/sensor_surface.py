@@ -14,9 +14,12 @@ so two planners read the same draws where they make the same motion. ``--before 
 pairs this study's noisy runs with an earlier one's (same scene, level and seed) and prints
 the mean F@1 % change with its 95 % paired-bootstrap interval and the sign test
 (:mod:`bench.paired`): is a planner change more than the sensor's lottery in 3D?
+``--reads N`` averages N reads at each reading point (``recon3d run --reads``; default
+``auto``, as a run takes them), so two reads rules compare the same way.
 
     python -m bench.sensor_surface [--scenes a,b] [--levels 0.1:0,0.3:0.25] [--slices 8]
-                                   [--seeds K] [--keyed-noise] [--csv FILE] [--before CSV]
+                                   [--seeds K] [--keyed-noise] [--reads N] [--csv FILE]
+                                   [--before CSV]
 """
 from __future__ import annotations
 
@@ -35,16 +38,17 @@ LEVELS = ((0.1, 0.0), (0.3, 0.25))
 
 
 def _row(scene: str, slices: int, noise: float, taxel: float, seed: int = 0,
-         keyed: bool = False) -> dict:
+         keyed: bool = False, reads: int | str = "auto") -> dict:
     import recon3d
 
     res = recon3d.run(scene, slices=slices, jobs=2, noise=noise, taxel=taxel, seed=seed,
-                      keyed_noise=keyed)
+                      keyed_noise=keyed, reads=reads)
     tot = res.metrics["total"]
     surf = tot.get("surface") or {}
     pieces = [p for fam in res.recon.regions for reg in fam for p in reg.pieces]
     return {"scene": scene, "noise": noise, "taxel": taxel, "seed": seed,
             "keyed": bool(keyed and noise),  # taxels alone draw nothing to key
+            "reads": (res.metrics.get("sensor") or {}).get("reads", 1),
             "fscore_1%": (surf.get("fscore") or {}).get("1%"),
             "coverage": tot.get("coverage_sensor", tot.get("coverage")),
             "unknown": sum(p.kind == "unknown" for p in pieces),
@@ -108,6 +112,9 @@ def main(argv=None) -> int:
                     help="sensor seeds 0 .. K-1 per noisy level (default 1)")
     ap.add_argument("--keyed-noise", action="store_true",
                     help="key each reading's noise by its posture (recon3d run --keyed-noise)")
+    ap.add_argument("--reads", default="auto", metavar="N",
+                    help="sensor reads averaged at each reading point: 'auto' (default, as "
+                    "recon3d run) or a number (recon3d run --reads)")
     ap.add_argument("--csv", help="write the rows here too")
     ap.add_argument("--before", help="an earlier study's CSV: print the paired change")
     args = ap.parse_args(argv)
@@ -115,6 +122,9 @@ def main(argv=None) -> int:
 
     if args.seeds < 1:
         ap.error("--seeds must be at least 1")
+    if args.reads != "auto" and not (args.reads.isdigit() and int(args.reads) >= 1):
+        ap.error(f"--reads is 'auto' or a number >= 1 (got {args.reads!r})")
+    reads = args.reads if args.reads == "auto" else int(args.reads)
     before = None
     if args.before:
         try:
@@ -130,7 +140,8 @@ def main(argv=None) -> int:
         commit += " with uncommitted changes"
     seeds = range(args.seeds)
     print(f"commit {commit}; {args.slices} z-slices, Embree, sensor seeds "
-          f"{', '.join(map(str, seeds))}{', keyed' if args.keyed_noise else ''}", flush=True)
+          f"{', '.join(map(str, seeds))}{', keyed' if args.keyed_noise else ''}, reads {reads}",
+          flush=True)
     t0, rows = time.perf_counter(), []
     print("each cell: F@1 % over the slab (reachable coverage, within eps/2 + 2 sigma with a "
           "sensor; unknown chords / bridges in the slices' closed regions)")
@@ -139,7 +150,7 @@ def main(argv=None) -> int:
     print(f"{'scene':18s} noiseless | {head}", flush=True)
     for scene in scenes:
         mine = [_row(scene, args.slices, 0.0, 0.0)]
-        mine += [_row(scene, args.slices, n, t, s, args.keyed_noise)
+        mine += [_row(scene, args.slices, n, t, s, args.keyed_noise, reads)
                  for n, t in args.levels for s in seeds]
         rows += mine
         print(f"{scene:18s} " + " | ".join(

@@ -52,10 +52,11 @@ def test_the_command_pairs_its_runs_with_an_earlier_study(tmp_path, monkeypatch,
 
     import bench.sensor_surface as ss
 
-    calls = []
+    calls, reads_seen = [], []
 
-    def row(scene, slices, noise, taxel, seed=0, keyed=False, shift=0.0):
+    def row(scene, slices, noise, taxel, seed=0, keyed=False, reads="auto", shift=0.0):
         calls.append((scene, noise, taxel, seed, keyed))
+        reads_seen.append(reads)
         return {"scene": scene, "noise": noise, "taxel": taxel, "seed": seed,
                 "keyed": bool(keyed and (noise or taxel)),
                 "fscore_1%": 0.9 - noise / 10 + 0.01 * seed + shift, "coverage": 0.99,
@@ -77,6 +78,21 @@ def test_the_command_pairs_its_runs_with_an_earlier_study(tmp_path, monkeypatch,
     out = capsys.readouterr().out
     assert "4 paired runs" in out and "(+0.0200," in out and "up 4, down 0" in out
     assert "warning" not in out
+    assert set(reads_seen) == {"auto"}  # as recon3d run takes them, unless asked
+    reads_seen.clear()
+    assert ss.main(["--scenes", "a", "--levels", "0.3:0.25", "--reads", "15"]) == 0
+    assert reads_seen == ["auto", 15] and "reads 15" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("value", ["0", "many", "-3"])
+def test_reads_must_be_auto_or_a_count(value, capsys):
+    import bench.sensor_surface as ss
+
+    with pytest.raises(SystemExit) as exc:
+        ss.main(["--scenes", "a", "--reads", value])
+    assert exc.value.code == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1].endswith(
+        f"--reads is 'auto' or a number >= 1 (got {value!r})")
 
 
 def test_an_unreadable_before_file_is_a_one_line_error(tmp_path, capsys):

@@ -75,9 +75,9 @@ def sweep(lines, length: float, eps: float,
     -- every other position is left out, the steer alternating over those kept;
     the positions are solved a chunk at a time, so from the next chunk on the
     ones left out are not solved either. The revisit asks it with a noisy sensor that
-    resolves eps/2 once a pass has left through the lid, which then cannot be W3
-    (the eps/2 spacing is the W3 proof's): the passes left only look for what
-    lies behind an opening. A coarser sensor sweeps (eps + jitter) / 2 apart
+    resolves eps/2 once a pass has left through the lid, or ended anywhere but at a
+    touched end: the lid then cannot be W3 (the eps/2 spacing is the W3 proof's),
+    and the passes left only look for a new contact. A coarser sensor sweeps (eps + jitter) / 2 apart
     already (:func:`~core2d.planner.grazing.sweep_length`), and doubling that
     lost a ring's far side (two 16-gons 13 eps across, sigma 0.3 eps, taxels
     0.25 eps, read once, seed 0: 0.994 -> 0.909). Keyed sensor study, six seeds,

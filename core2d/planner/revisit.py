@@ -42,10 +42,12 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    eps/2 along the lid, up to ``MAX_SWEEP`` (:mod:`core2d.planner.pass_plan`:
    each pass is planned when it is next, so a lid split early leaves the rest
    of its lid question unsolved). With a noisy sensor that resolves eps/2,
-   once a pass has left through the lid (it can no longer be W3: the sweep then
-   looks only for what lies behind an opening, islands) the sweep goes on at one
-   pass every eps, the paper's resolution (``sweep(sparse=)``): noise makes many
-   lids over the gaps between islands, and each swept them at eps/2. With a noisy
+   once a pass has left through the lid, or ended anywhere but at a touched end
+   (the lid can no longer be W3, step 5: the sweep then looks only for a new
+   contact) the sweep goes on at one pass every eps, the paper's resolution
+   (``sweep(sparse=)``): noise makes many lids over the gaps between islands
+   and across slots whose walls are recorded in pieces, and each was swept at
+   eps/2 (docs/notes/noise.md, "A lid that cannot be W3 swept at eps"). With a noisy
    sensor, :mod:`core2d.planner.grazing` leaves out the sweep passes too
    shallow to resolve eps/2, the passes through a spot where an earlier
    pass stopped in front of the lid (a spot off the lid is closed to its
@@ -270,7 +272,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
         if candidate:  # a noisy sensor: no grazing sweep passes (core2d.planner.grazing)
             sources.append((p, d, None) for p, d in sweep(
                 lines, area.dist, sweep_length(run.res),
-                sparse=lambda: escaped and resolves_half_eps(run.res))  # an open lid
+                sparse=lambda: (escaped or not ends_only) and resolves_half_eps(run.res))  # no W3
                            if steep_enough(run.res, area.a, area.b, d))
     else:  # nothing reaches the lid from V_i: try its other side
         back = run.known.free_lines(area.b, area.a, spacing=run.eps / 2,

@@ -44,8 +44,9 @@ def test_the_sweep_turns_sparse_when_asked():
     assert len(first) == 3 and len(rest) == 8  # positions 4, 6, ..., 18 of 20
 
 
-def _islands_one():
-    loops = outline("islands", np.random.default_rng(1), 1.0)
+def _outline(kind, seed):
+    """The outline ``kind`` of ``seed`` (eps 1) and a workspace circle around it."""
+    loops = outline(kind, np.random.default_rng(seed), 1.0)
     pts = np.concatenate(loops)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     return loops, ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
@@ -57,19 +58,12 @@ def test_open_lids_between_islands_cost_at_most_twice_the_noiseless_motions():
     whose passes left through it, made a sweep of up to 48 passes each; 3,664 motions
     against 1,769 noiseless (2.07 x). With one sweep pass every eps once a pass has
     left, 3,433 (1.94 x), coverage 1.000 both ways."""
-    loops, ws = _islands_one()
+    loops, ws = _outline("islands", 1)
     base = sense_slice(ExactContact(loops), ws, 1.0)
     res = sense_slice(ExactContact(loops), ws, 1.0, sensor=SensorModel.of_eps(1.0, 0.1, 0.0, 1))
     assert sum(r.outcome == "open" for r in res.areas) >= 3
     assert res.stats.motions <= 2.0 * base.stats.motions, (res.stats.motions, base.stats.motions)
     assert sensor_metrics(loops, res, 1.0, 0.1)["coverage_sensor"] >= 0.99
-
-
-def _comb_four():
-    loops = outline("comb", np.random.default_rng(4), 1.0)
-    pts = np.concatenate(loops)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    return loops, ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + 1.0))
 
 
 def test_lids_across_slots_that_cannot_be_w3_cost_at_most_twice_the_noiseless_motions():
@@ -81,7 +75,7 @@ def test_lids_across_slots_that_cannot_be_w3_cost_at_most_twice_the_noiseless_mo
     ends anywhere but at a touched end: 5,207 (1.97 x), coverage 1.000 both ways."""
     from core2d.resolution import repeated_reads
 
-    loops, ws = _comb_four()
+    loops, ws = _outline("comb", 4)
     base = sense_slice(ExactContact(loops), ws, 1.0)
     sensor = SensorModel.of_eps(1.0, 0.3, 0.25, 2004, reads=repeated_reads(1.0, 0.3, 0.25))
     res = sense_slice(ExactContact(loops), ws, 1.0, sensor=sensor)

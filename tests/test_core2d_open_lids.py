@@ -1,4 +1,5 @@
-"""The sweep through a lid a pass has left through, with a noisy sensor
+"""The sweep through a lid that can no longer be W3 -- a pass left through it or ended
+anywhere but at a touched end -- with a noisy sensor
 (:func:`core2d.planner.pass_plan.sweep`'s ``sparse``, :mod:`core2d.planner.revisit`)."""
 from __future__ import annotations
 
@@ -68,7 +69,7 @@ def test_open_lids_between_islands_cost_at_most_twice_the_noiseless_motions():
 
 def test_lids_across_slots_that_cannot_be_w3_cost_at_most_twice_the_noiseless_motions():
     """``comb`` outline seed 4 at sigma 0.3 eps, taxels 0.25 eps, 16 reads, sensor seed 2004
-    (the unseen-outline study's repeat 2): lids across its slots 1.6 - 2.9 eps wide and
+    (the unseen-outline study's repeat 2): lids across its slots 1.6 - 3 eps wide and
     along their walls, whose walls the noisy trace recorded in pieces. Their passes landed
     on recorded contour behind the lid, so none could be W3, yet each was swept one pass
     every eps/2: 5,479 motions against 2,649 noiseless (2.07 x). Swept at eps once a pass

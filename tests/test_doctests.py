@@ -32,6 +32,7 @@ MODULES = [
     "core2d.planner.mouths",
     "core2d.planner.tip_bound",
     "core2d.planner.thin_walls",
+    "core2d.planner.hops",
     "core2d.planner.openings",
     "core2d.planner.pass_contacts",
     "core2d.planner.pass_plan",

@@ -5,6 +5,8 @@ compliant trace. A step longer than the trace's sampling that turns concave, a s
 polyline's end onto the free side of the contour's line, a trace's first step farther than
 the same-point radius from D_i, and Case 1 reaching P_fin across a gap are hops: the
 stretch between their two contacts is registered as an unknown area (rule ``"hop"``).
+:func:`across_wall` tells Case 1's P_fin reached across a wall thinner than eps/2 (a
+needle's far face) from one reached across a gap: the trace slides on past the former.
 """
 from __future__ import annotations
 
@@ -13,7 +15,7 @@ import numpy as np
 
 from core2d.planner.areas import register
 
-__all__ = ["split_hops", "hop_to", "HOP_TURN"]
+__all__ = ["split_hops", "hop_to", "across_wall", "HOP_TURN"]
 
 #: a W1 step longer than eps / 4 turning left (concave) by more than this hides contour
 HOP_TURN = np.pi / 4
@@ -59,6 +61,73 @@ def hop_to(pieces, last, p_fin, hop):
     if m is None:
         return False
     return abs(_turn(last - pts[m], np.asarray(p_fin) - last)) > HOP_TURN
+
+
+def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap) -> bool:
+    """Did Case 1's hop onto P_fin (:func:`hop_to`) cross a wall, not a gap?
+
+    The controller's radius (the same-point radius eps / 2) takes P_fin as
+    reached across anything narrower: the mouth of a slit (:func:`hop_to`:
+    the slit behind is registered as an area) or a wall thinner than eps / 2
+    -- a needle, whose P_fin was touched on its far face. Across a wall the
+    contour from the tip to P_fin runs round the wall's end, however far:
+    registered as a hop its lid, shorter than eps, is W2 at once (§3.1) and
+    the wall's end is never touched (``numerics`` seed 0: a needle 0.56 eps
+    wide at its base and 39 eps long, its outer 33 eps on both faces lost,
+    0.882 of the reachable contour covered noiselessly). Read from what the
+    probe sensed: the tip still touches the face slid along where the
+    controller stopped (on its line over the last ``hop`` of contour, within
+    ``near``: the step that passed P_fin slid along it), P_fin lies behind
+    that face (on its material side by more than ``near``), and the probe that touched P_fin (``pose_fin``: its joint to P_fin is
+    free space) did not come through a gap beside the tip -- its segment
+    from the joint to P_fin crosses that line nowhere within ``gap`` of the
+    tip, or not at all. A slit's probe came in through its mouth beside the
+    tip; a wall's probe lay on its far side. A P_fin just round a convex corner,
+    touched on the next face, reads the same: the trace slides round the corner
+    instead of stopping at its chord (a motion or two; the outlines' noiseless
+    coverage is unchanged by it).
+
+    Parameters
+    ----------
+    pieces : list of (k, 2) float -- the trace so far, P_fin appended last.
+    last : (2,) float -- the last tip contact before P_fin.
+    now : (2,) float -- the tip's contact where the controller stopped.
+    p_fin : (2,) float -- P_fin.
+    pose_fin : Posture -- the probe posture that touched P_fin.
+    sign : float -- +1 when the material lies right of the trace, -1 left.
+    hop, near, gap : float -- the lengths of
+        :class:`~core2d.resolution.Resolution`: the stretch the face's line is
+        read over, the contact noise, how far from the tip a gap can open.
+
+    Examples
+    --------
+    >>> from core2d.planner.regions import Posture
+    >>> face = [np.array([[x, 0.0] for x in np.arange(0.0, 2.01, 0.25)])]
+    >>> under = Posture(np.array([50.0, -0.5]), np.array([-1.0, 0.0]))  # the far face's probe
+    >>> last, now = np.array([2.0, 0.0]), np.array([2.2, 0.0])
+    >>> across_wall(face, last, now, [2.1, -0.3], under, 1.0, 0.25, 0.02, 1.0)
+    True
+    >>> slit = Posture(np.array([2.1, 50.0]), np.array([0.0, -1.0]))  # down through a mouth
+    >>> across_wall(face, last, now, [2.1, -0.3], slit, 1.0, 0.25, 0.02, 1.0)
+    False
+    >>> across_wall(face, last, [2.1, -0.5], [2.1, -0.3], under, 1.0, 0.25, 0.02, 1.0)
+    False
+    """
+    pts = np.concatenate(pieces)[:-1]
+    m = _reach_back(pts, len(pts) - 1, -1, hop)
+    if m is None:
+        return False
+    u = last - pts[m]
+    if abs(_off_line(last, u, now)) > near:
+        return False  # the stopping step left the face: not a slide past P_fin
+    behind = sign * _off_line(last, u, p_fin)
+    if behind >= -near:
+        return False  # on the face's line or its free side: not reached through material
+    joint = sign * _off_line(last, u, pose_fin.joint)
+    if joint <= 0.0:
+        return True  # the whole probe behind the face: it touched P_fin from the far side
+    cross = np.asarray(p_fin, float) + (pose_fin.joint - p_fin) * (behind / (behind - joint))
+    return bool(np.hypot(*(cross - last)) > gap)
 
 
 def _off_line(origin, direction, point) -> float:

@@ -13,7 +13,11 @@ events of §4.3.2 end a trace: Case 1 (reached P_fin), Case 2-1 / 2-2 / 2-3
 Case 4 (joint blocked). Non-traced parts are registered by the rule of §4.3.3,
 and so is a hop of the tip over a gap the controller took as continuous
 (:func:`core2d.planner.hops.split_hops`: the mouth of a slender wedge is not
-traced contour).
+traced contour). Case 1 is the tip reaching P_fin along the contour: a P_fin
+the controller's radius (eps/2) reports across a wall thinner than that -- a
+needle's far face -- is slid on past (:func:`core2d.planner.hops.across_wall`),
+so the contour round the wall's end is traced, or registered by the rule of
+§4.3.3 where the trace ends there.
 """
 from __future__ import annotations
 
@@ -21,13 +25,16 @@ import numpy as np
 
 from core2d.planner.areas import pivot_G, register
 from core2d.planner.grazing import resolves_half_eps
-from core2d.planner.hops import hop_to, split_hops
+from core2d.planner.hops import across_wall, hop_to, split_hops
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 from core2d.planner.robot import Robot
 from core2d.readings import LEFT, RIGHT, TIP
 
 __all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal",
            "reread_jump", "reread_pass"]
+
+#: P_fin reached across a wall at most this many times in one trace (each costs a motion)
+_MAX_WALLS = 4
 
 
 def plan_sides(local):
@@ -192,16 +199,30 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     depth = area.depth + 1
     pieces = [local.point[None]]
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
+    res, sign, walls = probe.resolution, 1.0 if toward_B else -1.0, 0
+    past = False  # sliding on past a P_fin reached across a wall
     while budget():
-        r = probe.trace(v, tau, 4 * probe.radius, stop_at=p_fin, leave_at=p_other)
+        r = probe.trace(v, tau, res.eps if past else 4 * probe.radius,
+                        stop_at=None if past else p_fin, leave_at=p_other)
         if len(r.trace):
             pieces.append(r.trace)
         p1 = pieces[-1][-1]
         pose1 = Posture(r.before_joint, r.before_direction)
+        if past and r.event == "done":
+            past = False  # out of P_fin's radius: the controller watches for it again
+            continue
+        past = False
         if r.event == "reached":
-            cases.append("case1")
             last = _before_fin(pieces)
-            if last is not None and hop_to(pieces, last, p_fin, probe.resolution.hop):
+            now = r.tip_contact
+            if last is not None and now is not None and walls < _MAX_WALLS and across_wall(
+                    pieces, last, now.point, p_fin, pose_fin, sign, res.hop, res.near,
+                    2 * res.tip_zone):
+                pieces[-1] = pieces[-1][:-1]  # P_fin lies across a wall, not slid to
+                walls, past = walls + 1, True
+                continue  # the contour goes on round the wall's end
+            cases.append("case1")
+            if last is not None and hop_to(pieces, last, p_fin, res.hop):
                 pieces[-1] = pieces[-1][:-1]  # P_fin was passed, not slid over
                 new.append(register(last, pose1, p_fin, pose_fin, fin_is_A, area.index,
                                     "hop", depth))

@@ -1,0 +1,88 @@
+"""Needles: walls thinner than eps / 2, whose two faces the trace must not take for one.
+
+The controller reports Case 1 when the tip passes within the same-point radius eps / 2 of
+P_fin (§4.3.2). P_fin on the far face of a needle thinner than that is "reached" through
+the material: the trace used to stop there, and the needle's end beyond -- reachable from
+F, however long -- was neither traced nor approximated. The trace now slides on past such a
+P_fin (``core2d.planner.hops.across_wall``: P_fin behind the face slid along, and the probe
+that touched it not come through a gap beside the tip) and the contour round the needle's
+end is traced and registered as the paper's flow does for any convex end.
+
+* ``numerics`` seed 0 (``tests/outlines.py``): a needle 0.56 eps wide at its base and 39
+  eps long out of a star; 0.882 of the reachable contour covered before, the needle's outer
+  33 eps on both faces missed;
+* a constructed needle 60 eps long, 0.45 eps wide at its base, leaning 75 degrees over a
+  block's top face (0.688 before: the probe reaches it flush along both faces);
+* the rule's three readings one by one (a wall, a slit's mouth, a step that left the face).
+
+Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+from core2d import sense_slice
+from core2d.planner.hops import across_wall
+from core2d.planner.regions import Posture
+from core2d.truth.metrics import slice_metrics
+from outlines import outline
+from slicer.contact.exact import ExactContact
+
+
+def _sense(loops, eps=1.0):
+    pts = np.concatenate(loops)
+    lo, hi = pts.min(0), pts.max(0)
+    ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + eps))
+    res = sense_slice(ExactContact(loops), ws, eps, max_motions=20000)
+    return res, slice_metrics(loops, res, eps)
+
+
+def needle_block(length, width, lean_deg):
+    """A block (material below y = 0, 60 x 12, eps = 1) with a needle ``width`` wide at its
+    base (1 below the top face) and ``length`` + 1 long, leaning ``lean_deg`` from the
+    vertical. Returns [outer loop] (counter-clockwise)."""
+    a = np.radians(90.0 - lean_deg)
+    d = np.array([np.cos(a), np.sin(a)])
+    n = np.array([-d[1], d[0]])
+    base = np.array([0.0, -1.0])
+    spike = shapely.Polygon([base + width / 2 * n, base + (length + 1) * d,
+                             base - width / 2 * n])
+    loop = np.asarray(shapely.box(-30, -12, 30, 0).union(spike).exterior.coords)[:-1]
+    return [loop if shapely.LinearRing(loop).is_ccw else loop[::-1]]
+
+
+@pytest.mark.parametrize("loops", [
+    pytest.param(lambda: outline("numerics", np.random.default_rng(0), 1.0), id="numerics-0"),
+    pytest.param(lambda: needle_block(60.0, 0.45, 75.0), id="leaning-needle"),
+])
+def test_both_faces_of_a_needle_are_traced_round_its_end(loops):
+    loops = loops()
+    res, m = _sense(loops)
+    assert not res.stats.budget_hit
+    assert m["coverage"] >= 0.99, f"coverage {m['coverage']:.4f}"
+    assert m["precision"] >= 0.99
+    assert m["w3_unsound_count"] == 0
+
+
+_FACE = [np.array([[x, 0.0] for x in np.arange(0.0, 2.01, 0.25)])]  # material below y = 0
+_LAST, _NOW, _FIN = np.array([2.0, 0.0]), np.array([2.2, 0.0]), np.array([2.1, -0.3])
+
+
+@pytest.mark.parametrize("joint, now, wall", [
+    ((50.0, -0.5), _NOW, True),  # P_fin touched from under the wall: a needle's far face
+    ((50.0, 2.0), _NOW, True),  # from above, crossing the face's line far past the tip
+    ((2.1, 50.0), _NOW, False),  # straight down through a gap beside the tip: a slit
+    ((50.0, -0.5), (2.1, -0.5), False),  # the stopping step left the face
+])
+def test_across_wall_reads_the_probe_that_touched_p_fin(joint, now, wall):
+    pose = Posture(np.array(joint), np.array([0.0, 0.0]))
+    assert across_wall(_FACE, _LAST, np.asarray(now), _FIN, pose, 1.0, 0.25, 0.1, 1.0) is wall
+
+
+def test_a_p_fin_on_the_face_slid_along_is_reached():
+    """Case 1 as the paper has it: P_fin on the face's line (or its free side) is reached."""
+    pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
+    for fin in ([2.3, 0.0], [2.3, 0.05], [2.2, 0.3]):
+        assert not across_wall(_FACE, _LAST, _NOW, np.array(fin), pose, 1.0, 0.25, 0.1, 1.0)

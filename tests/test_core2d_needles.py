@@ -12,12 +12,14 @@ end is traced and registered as the paper's flow does for any convex end.
   eps long out of a star; 0.882 of the reachable contour covered before, the needle's outer
   33 eps on both faces missed;
 * a constructed needle 60 eps long, 0.45 eps wide at its base, leaning 75 degrees over a
-  block's top face (0.688 before: the probe reaches it flush along both faces);
+  block's top face (0.688 before: the needle traced over its first 17 eps only);
 * the rule's three readings one by one (a wall, a slit's mouth, a step that left the face).
 
 Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
 """
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -86,3 +88,37 @@ def test_a_p_fin_on_the_face_slid_along_is_reached():
     pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
     for fin in ([2.3, 0.0], [2.3, 0.05], [2.2, 0.3]):
         assert not across_wall(_FACE, _LAST, _NOW, np.array(fin), pose, 1.0, 0.25, 0.1, 1.0)
+
+
+MESHES = Path(__file__).resolve().parents[1].parent / "shared" / "meshes"
+
+
+def test_a_slide_past_p_fin_that_ends_within_eps_is_case1_where_the_controller_stopped(
+        monkeypatch):
+    """``vtk_42400-IDGH``, z-plane 4 of 5: P_fin lies on the next face of a convex corner,
+    0.35 eps round it. Sliding on past it, the trace went round the corner and jumped
+    (Case 2) within eps; registered, the jump's two areas cost two revisits of 54 passes
+    each (1,872 -> 2,093 motions) and covered nothing new. Such a slide falls back to
+    Case 1 where the controller stopped: the run costs what it does without the rule."""
+    import meshes
+    import slicer
+    import core2d.planner.tracing as tracing
+
+    path = MESHES / "vtk_42400-IDGH.stl"
+    if not path.exists():
+        pytest.skip(f"{path} not found: the shared meshes live next to the repository")
+    mesh = meshes.load(str(path))
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=5)[4]
+    center, radius = cut.bounding_circle()
+    loops = [np.asarray(lp) for lp in cut.loops]
+
+    def run():
+        res = sense_slice(cut.contact("embree"), (center, radius + eps), eps)
+        return res.stats.motions, slice_metrics(loops, res, eps)["coverage"]
+
+    motions, coverage = run()
+    monkeypatch.setattr(tracing, "_MAX_WALLS", 0)  # the rule off
+    motions_off, coverage_off = run()
+    assert coverage >= coverage_off
+    assert motions <= motions_off + 10, (motions, motions_off)

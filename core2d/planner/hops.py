@@ -83,9 +83,9 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap) -> boo
     from the joint to P_fin crosses that line nowhere within ``gap`` of the
     tip, or not at all. A slit's probe came in through its mouth beside the
     tip; a wall's probe lay on its far side. A P_fin just round a convex corner,
-    touched on the next face, reads the same: the trace slides round the corner
-    instead of stopping at its chord (a motion or two; the outlines' noiseless
-    coverage is unchanged by it).
+    touched on the next face, reads the same; there the face slid along ends
+    within the eps the trace slides on (:func:`~core2d.planner.tracing.trace_side`
+    then keeps Case 1 where the controller stopped), or the corner is traced.
 
     Parameters
     ----------

@@ -15,9 +15,11 @@ and so is a hop of the tip over a gap the controller took as continuous
 (:func:`core2d.planner.hops.split_hops`: the mouth of a slender wedge is not
 traced contour). Case 1 is the tip reaching P_fin along the contour: a P_fin
 the controller's radius (eps/2) reports across a wall thinner than that -- a
-needle's far face -- is slid on past (:func:`core2d.planner.hops.across_wall`),
-so the contour round the wall's end is traced, or registered by the rule of
-§4.3.3 where the trace ends there.
+needle's far face -- is slid on past (:func:`core2d.planner.hops.across_wall`):
+one trace of eps without P_fin, then the controller watches for it again, so the
+contour round the wall's end is traced, or registered by the rule of §4.3.3
+where the trace ends there. A slide that ends within that eps by any event (the
+face ended: a convex corner, not a wall) is Case 1 where the controller stopped.
 """
 from __future__ import annotations
 
@@ -200,26 +202,29 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     pieces = [local.point[None]]
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     res, sign, walls = probe.resolution, 1.0 if toward_B else -1.0, 0
-    past = False  # sliding on past a P_fin reached across a wall
+    held = None  # (pieces, pose) where the controller reported P_fin across a wall
     while budget():
-        r = probe.trace(v, tau, res.eps if past else 4 * probe.radius,
-                        stop_at=None if past else p_fin, leave_at=p_other)
+        r = probe.trace(v, tau, res.eps if held else 4 * probe.radius,
+                        stop_at=None if held else p_fin, leave_at=p_other)
         if len(r.trace):
             pieces.append(r.trace)
         p1 = pieces[-1][-1]
         pose1 = Posture(r.before_joint, r.before_direction)
-        if past and r.event == "done":
-            past = False  # out of P_fin's radius: the controller watches for it again
-            continue
-        past = False
-        if r.event == "reached":
+        back = False  # Case 1 where the controller stopped, after all
+        if held is not None:
+            if r.event == "done":
+                held = None
+                continue  # the wall goes on: the controller watches for P_fin again
+            (pieces, pose1), held, back = held, None, True  # it ended within eps
+        if r.event == "reached" or back:
             last = _before_fin(pieces)
             now = r.tip_contact
-            if last is not None and now is not None and walls < _MAX_WALLS and across_wall(
-                    pieces, last, now.point, p_fin, pose_fin, sign, res.hop, res.near,
-                    2 * res.tip_zone):
+            if not back and last is not None and now is not None and walls < _MAX_WALLS \
+                    and across_wall(pieces, last, now.point, p_fin, pose_fin, sign, res.hop,
+                                    res.near, 2 * res.tip_zone):
+                held = (list(pieces), pose1)
                 pieces[-1] = pieces[-1][:-1]  # P_fin lies across a wall, not slid to
-                walls, past = walls + 1, True
+                walls += 1
                 continue  # the contour goes on round the wall's end
             cases.append("case1")
             if last is not None and hop_to(pieces, last, p_fin, res.hop):

@@ -15,7 +15,7 @@ from core2d import SensorModel, sense_slice
 from core2d.truth.metrics import sensor_metrics
 from slicer.contact.exact import ExactContact
 
-__all__ = ["coverages", "scene_slice"]
+__all__ = ["coverages", "scene_slice", "mesh_slice"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
@@ -43,6 +43,20 @@ def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
     return np.array(covs)
 
 
+def mesh_slice(source, index: int, count: int = 8):
+    """z-slice ``index`` of ``count`` of the mesh ``source`` (a built-in scene's name or a
+    path), cut as the sensor study cuts it: ``(cut, eps, workspace, loops)``, eps =
+    diagonal / 200, the workspace the cut's bounding circle grown by eps."""
+    import meshes
+    import slicer
+
+    mesh = meshes.load(source)
+    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
+    cut = slicer.slice_mesh(mesh, axis="z", count=count)[index]
+    center, radius = cut.bounding_circle()
+    return cut, eps, (center, radius + eps), [np.asarray(lp) for lp in cut.loops]
+
+
 def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
                 keyed: bool = False, reads: int = 1):
     """Sense z-slice ``index`` of 8 of the built-in scene ``name`` (Embree,
@@ -50,15 +64,8 @@ def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
     ``seed``; ``keyed`` draws; ``reads`` averaged per reading point), as the sensor study
     does; returns the result and
     :func:`~core2d.truth.metrics.sensor_metrics` of it."""
-    import meshes
-    import slicer
-
-    mesh = meshes.load(name)
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=8)[index]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
-    res = sense_slice(cut.contact("embree"), (center, radius + eps), eps,
+    cut, eps, ws, loops = mesh_slice(name, index)
+    res = sense_slice(cut.contact("embree"), ws, eps,
                       sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed,
                                                 reads=reads))
     return res, sensor_metrics(loops, res, eps, noise * eps)

@@ -19,8 +19,6 @@ Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outli
 """
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import shapely
@@ -90,31 +88,21 @@ def test_a_p_fin_on_the_face_slid_along_is_reached():
         assert not across_wall(_FACE, _LAST, _NOW, np.array(fin), pose, 1.0, 0.25, 0.1, 1.0)
 
 
-MESHES = Path(__file__).resolve().parents[1].parent / "shared" / "meshes"
-
 
 def test_a_slide_past_p_fin_that_ends_within_eps_is_case1_where_the_controller_stopped(
-        monkeypatch):
+        shared_meshes_dir, monkeypatch):
     """``vtk_42400-IDGH``, z-plane 4 of 5: P_fin lies on the next face of a convex corner,
     0.35 eps round it. Sliding on past it, the trace went round the corner and jumped
     (Case 2) within eps; registered, the jump's two areas cost two revisits of 54 passes
     each (1,872 -> 2,093 motions) and covered nothing new. Such a slide falls back to
     Case 1 where the controller stopped: the run costs what it does without the rule."""
-    import meshes
-    import slicer
     import core2d.planner.tracing as tracing
+    from noisy_runs import mesh_slice
 
-    path = MESHES / "vtk_42400-IDGH.stl"
-    if not path.exists():
-        pytest.skip(f"{path} not found: the shared meshes live next to the repository")
-    mesh = meshes.load(str(path))
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=5)[4]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
+    cut, eps, ws, loops = mesh_slice(shared_meshes_dir / "vtk_42400-IDGH.stl", 4, count=5)
 
     def run():
-        res = sense_slice(cut.contact("embree"), (center, radius + eps), eps)
+        res = sense_slice(cut.contact("embree"), ws, eps)
         return res.stats.motions, slice_metrics(loops, res, eps)["coverage"]
 
     motions, coverage = run()

@@ -107,14 +107,12 @@ def test_audit_registers_contour_no_area_holds(shared_meshes_dir, monkeypatch):
     the reachable contour than the same run without the audit."""
     import core2d.planner.run as planner_run
 
-    mesh = meshes.load(shared_meshes_dir / "vtk_42400-IDGH.stl")
-    eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
-    cut = slicer.slice_mesh(mesh, axis="z", count=8)[5]
-    center, radius = cut.bounding_circle()
-    loops = [np.asarray(lp) for lp in cut.loops]
+    from noisy_runs import mesh_slice
+
+    cut, eps, ws, loops = mesh_slice(shared_meshes_dir / "vtk_42400-IDGH.stl", 5)
 
     def run():
-        res = sense_slice(cut.contact("embree"), (center, radius + eps), eps)
+        res = sense_slice(cut.contact("embree"), ws, eps)
         return res, slice_metrics(loops, res, eps)
 
     res, m = run()

@@ -64,7 +64,7 @@ def hop_to(pieces, last, p_fin, hop):
 
 
 def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap) -> bool:
-    """Did Case 1's hop onto P_fin (:func:`hop_to`) cross a wall, not a gap?
+    """Did Case 1 report P_fin reached across a wall (not along the contour, nor across a gap)?
 
     The controller's radius (the same-point radius eps / 2) takes P_fin as
     reached across anything narrower: the mouth of a slit (:func:`hop_to`:
@@ -78,13 +78,14 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap) -> boo
     probe sensed: the tip still touches the face slid along where the
     controller stopped (on its line over the last ``hop`` of contour, within
     ``near``: the step that passed P_fin slid along it), P_fin lies behind
-    that face (on its material side by more than ``near``), and the probe that touched P_fin (``pose_fin``: its joint to P_fin is
-    free space) did not come through a gap beside the tip -- its segment
-    from the joint to P_fin crosses that line nowhere within ``gap`` of the
-    tip, or not at all. A slit's probe came in through its mouth beside the
-    tip; a wall's probe lay on its far side. A P_fin just round a convex corner,
-    touched on the next face, reads the same; there the face slid along ends
-    within the eps the trace slides on (:func:`~core2d.planner.tracing.trace_side`
+    that face (on its material side by more than ``near``), and the probe
+    that touched P_fin (``pose_fin``: its joint to P_fin is free space) did
+    not come through a gap beside the tip -- its segment from the joint to
+    P_fin crosses that line nowhere within ``gap`` of the tip, or not at
+    all. A slit's probe came in through its mouth beside the tip; a wall's
+    probe lay on its far side. A P_fin just round a convex corner, touched
+    on the next face, reads the same; there the face slid along ends within
+    the eps the trace slides on (:func:`~core2d.planner.tracing.trace_side`
     then keeps Case 1 where the controller stopped), or the corner is traced.
 
     Parameters

@@ -17,7 +17,13 @@ convex end; a slide that ends within eps keeps Case 1 where the controller stopp
 * a slide round a convex corner that ends within eps (``vtk_42400-IDGH``, z-plane 4 of 5,
   skipped without ``../shared``): it costs what the run costs without the rule;
 * the rule's readings one by one (a wall, a probe crossing the face's line far past the tip, a
-  slit's mouth, a step that left the face).
+  slit's mouth, a step that left the face);
+* ``numerics`` seed 0 at sigma 0.3 eps with taxels 0.25 eps (the sensor's jitter 0.44 eps,
+  ``near`` 0.54 eps): where the trace stops the needle is 0.3 eps thick, thinner than any
+  depth the sensor resolves, so its far face is told by the map instead
+  (``core2d.planner.thin_walls.far_face``: P_fin was recorded on a face running against the
+  one slid along), and the slide goes on past the same-point radius on both sides
+  (2 x ``tip_zone``) so the controller does not report the same P_fin again at once.
 
 Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
 """
@@ -27,20 +33,23 @@ import numpy as np
 import pytest
 import shapely
 
-from core2d import sense_slice
+from core2d import SensorModel, sense_slice
 from core2d.planner.hops import across_wall
 from core2d.planner.regions import Posture
-from core2d.truth.metrics import slice_metrics
+from core2d.resolution import repeated_reads
+from core2d.truth.metrics import sensor_metrics, slice_metrics
 from outlines import outline
 from slicer.contact.exact import ExactContact
 
 
-def _sense(loops, eps=1.0):
+def _sense(loops, eps=1.0, sensor=None):
     pts = np.concatenate(loops)
     lo, hi = pts.min(0), pts.max(0)
     ws = ((lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2 + eps))
-    res = sense_slice(ExactContact(loops), ws, eps, max_motions=20000)
-    return res, slice_metrics(loops, res, eps)
+    res = sense_slice(ExactContact(loops), ws, eps, max_motions=20000, sensor=sensor)
+    if sensor is None:
+        return res, slice_metrics(loops, res, eps)
+    return res, sensor_metrics(loops, res, eps, sensor.noise)
 
 
 def needle_block(length, width, lean_deg):
@@ -70,6 +79,30 @@ def test_both_faces_of_a_needle_are_traced_round_its_end(loops):
     assert m["w3_unsound_count"] == 0
 
 
+def _coarse(seed, keyed=False):
+    """sigma 0.3 eps, taxels 0.25 eps, the planner's repeated reads (eps = 1)."""
+    return SensorModel.of_eps(1.0, 0.3, 0.25, seed, keyed=keyed,
+                              reads=repeated_reads(1.0, 0.3, 0.25))
+
+
+@pytest.mark.parametrize("seed, keyed", [(0, False), (5000, False), (5000, True)])
+def test_a_needle_thinner_than_the_sensors_jitter_is_told_by_the_map(seed, keyed, monkeypatch):
+    """``numerics`` seed 0 at sigma 0.3 eps, taxels 0.25 eps: 0.886 - 0.888 of the reachable
+    contour within eps/2 + 2 sigma before; with the map's reading off it fails again. Seed
+    5000 fails with a slide of eps only (the controller reported the same P_fin 0.86 eps
+    on), keyed seed 5000 when the map's reading also asks the probe's crossing (read 1.35
+    eps from the tip, off a line read over too short a stretch)."""
+    import core2d.planner.tracing as tracing
+
+    loops = outline("numerics", np.random.default_rng(0), 1.0)
+    res, m = _sense(loops, sensor=_coarse(seed, keyed))
+    assert not res.stats.budget_hit
+    assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
+    assert m["precision_sensor"] >= 0.98
+    monkeypatch.setattr(tracing, "far_face", lambda *a, **k: False)  # the map's reading off
+    assert _sense(loops, sensor=_coarse(seed, keyed))[1]["coverage_sensor"] < 0.98
+
+
 _FACE = [np.array([[x, 0.0] for x in np.arange(0.0, 2.01, 0.25)])]  # material below y = 0
 _LAST, _NOW, _FIN = np.array([2.0, 0.0]), np.array([2.2, 0.0]), np.array([2.1, -0.3])
 
@@ -83,6 +116,21 @@ _LAST, _NOW, _FIN = np.array([2.0, 0.0]), np.array([2.2, 0.0]), np.array([2.1, -
 def test_across_wall_reads_the_probe_that_touched_p_fin(joint, now, wall):
     pose = Posture(np.array(joint), np.array([0.0, 0.0]))
     assert across_wall(_FACE, _LAST, np.asarray(now), _FIN, pose, 1.0, 0.25, 0.1, 1.0) is wall
+
+
+@pytest.mark.parametrize("fin, against, wall", [
+    ((2.1, -0.05), True, True),  # within near of the face, recorded on a face running against
+    ((2.1, -0.05), False, False),  # the same reading without the map's: the face itself
+    ((2.1, 0.05), True, False),  # on the free side: a slit's far wall, not a wall's far face
+])
+def test_a_p_fin_within_the_jitter_is_read_by_the_face_it_was_recorded_on(fin, against, wall):
+    pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
+    faces = []
+    got = across_wall(_FACE, _LAST, _NOW, np.array(fin), pose, 1.0, 0.25, 0.1, 1.0,
+                      lambda face: faces.append(face) or against)
+    assert got is wall
+    if faces:  # asked with the face slid along, material on its right: +x here
+        np.testing.assert_allclose(faces[0], [1.0, 0.0], atol=1e-12)
 
 
 def test_a_p_fin_on_the_face_slid_along_is_reached():

@@ -3,6 +3,8 @@
 A wall 0.7 eps thick beside a slit 2.67 eps wide (the outer wall of
 ``trimesh_octagonal_pocket`` z0 / z7, eps 1 here, exact backend): its outer face traced,
 the lids laid along its slit side used to be closed as contour recorded from B to A.
+``far_face``: a point recorded on a face running against a given one (a needle's two faces,
+read by their directions, not by a depth the sensor cannot resolve).
 """
 from __future__ import annotations
 
@@ -11,7 +13,7 @@ import pytest
 
 from core2d import SensorModel, sense_slice
 from core2d.planner.known import KnownContour
-from core2d.planner.thin_walls import behind_recorded
+from core2d.planner.thin_walls import behind_recorded, far_face
 from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
 from slicer.contact.exact import ExactContact
@@ -80,3 +82,35 @@ def test_the_slit_side_of_a_thin_wall_is_traced_at_sigma_01():
         assert m["precision_sensor"] >= 0.98, f"seed {seed}"
         assert m["w3_unsound_count_sensor"] == 0, f"seed {seed}"
         assert not res.stats.budget_hit and res.stats.motions <= 2 * base.stats.motions
+
+
+#: sigma 0.3 eps over the planner's 16 reads (0.075), taxels 0.25 eps: tip zone 0.94 eps
+COARSE = Resolution.of(1.0, noise=0.075, taxel=0.25)
+
+
+@pytest.mark.parametrize("face, against", [
+    ((-1.0, 0.0), True),  # antiparallel: the wall's other face
+    ((-0.8, 0.6), True),  # turned 143 degrees
+    ((-0.6, 0.8), False),  # turned 127 degrees: a corner, not a wall
+    ((0.0, -1.0), False),  # a concave corner's other face
+    ((1.0, 0.0), False),  # the same face
+])
+def test_far_face_reads_the_turn_between_the_two_faces(face, against):
+    """The map's piece runs +x (material below); ``face`` is the one slid along."""
+    assert far_face(_wall(scatter=0.15, seed=3), COARSE, [3.0, 0.1], np.array(face),
+                    COARSE.tip_zone) is against
+
+
+def test_far_face_needs_a_readable_piece_each_of_which_runs_against():
+    face = np.array([-1.0, 0.0])
+    assert not far_face(_wall(), COARSE, [3.0, 2.0], face, COARSE.tip_zone)  # nothing near
+    short = KnownContour(join=0.5)
+    short.add([[3.0, 0.0], [3.4, 0.0]])  # 0.4 long: no direction to read
+    assert not far_face(short, COARSE, [3.2, 0.0], face, COARSE.tip_zone)
+    both = _wall()
+    assert far_face(both, COARSE, [3.0, 0.0], face, COARSE.tip_zone)
+    both.add([[x, 0.3] for x in np.arange(5.5, 0.4, -0.5)])  # a second face, running along it
+    assert not far_face(both, COARSE, [3.0, 0.1], face, COARSE.tip_zone)
+    short_too = _wall()
+    short_too.add([[3.1, 0.3], [3.5, 0.3]])  # a short chord beside it is skipped
+    assert far_face(short_too, COARSE, [3.0, 0.1], face, COARSE.tip_zone)

@@ -299,7 +299,7 @@ class Exploration:
                                      not toward_B, area.index, "limit", area.depth + 1))
                 continue
             lines, new, _, ends = trace_side(probe, area, G, joint_i, local, toward_B,
-                                             self.budget, self.flow)
+                                             self.budget, self.flow, self.known)
             traced += self.traced(lines, ends)
             kids.extend(new)
         if len(sides) == 1:  # one-sided start: Fig. 12(c) / Theorem 4 (B)-(E)

@@ -28,10 +28,60 @@ import numpy as np
 from core2d.planner.known import KnownContour
 from core2d.resolution import Resolution
 
-__all__ = ["behind_recorded", "WINDOW"]
+__all__ = ["behind_recorded", "far_face", "WINDOW"]
 
 #: the local line of a recorded piece: its points within this many eps of the contact
 WINDOW = 1.5
+#: cos 45 degrees: two faces turned from each other by more than 135 degrees run against
+_COS_WALL = 2.0 ** -0.5
+
+
+def _local_chord(pl, p, window):
+    """The local line of recorded piece ``pl`` at ``p``: (first point, unit direction,
+    length) of the chord over its points within ``window`` of ``p`` (None: fewer than two)."""
+    idx = np.flatnonzero(np.hypot(*(pl - p).T) <= window)
+    if len(idx) < 2:
+        return None
+    run = pl[idx.min():idx.max() + 1]
+    chord = run[-1] - run[0]
+    length = float(np.hypot(*chord))
+    return (run, chord / length if length > 0 else chord, length)
+
+
+def far_face(known: KnownContour, res: Resolution, point, face, radius: float) -> bool:
+    """Was ``point`` (2,) recorded on a surface facing away from ``face``: does every
+    recorded piece within ``radius`` of it whose local line is at least eps/2 long run
+    against ``face`` (a unit (2,) direction with the material on its right, as the map's
+    pieces run), turned from it by more than 135 degrees?
+
+    The two faces of a wall run antiparallel (material between them); one face, or two
+    faces across a concave corner, turn by less. Unlike a depth, the turn is read over
+    eps of contour on either side, far above any sensor's jitter: the wall may be thinner
+    than the jitter (:func:`~core2d.planner.hops.across_wall`).
+
+    >>> res = Resolution.of(1.0, noise=0.075, taxel=0.25)  # sigma 0.3 eps over 16 reads
+    >>> k = KnownContour(join=0.5)
+    >>> k.add([[x, -0.3] for x in np.arange(6.0, -0.1, -0.5)])  # a wall's lower face
+    >>> far_face(k, res, [3.0, -0.3], np.array([1.0, 0.0]), res.tip_zone)  # its upper face
+    True
+    >>> far_face(k, res, [3.0, -0.3], np.array([-1.0, 0.0]), res.tip_zone)  # the same face
+    False
+    >>> far_face(k, res, [9.0, -0.3], np.array([1.0, 0.0]), res.tip_zone)  # nothing recorded
+    False
+    """
+    p = np.asarray(point, dtype=np.float64)
+    hits = known.passing(p, radius)
+    if not hits:
+        return False
+    read = False
+    for j, _ in hits:
+        line = _local_chord(known.pieces[j], p, WINDOW * res.eps)
+        if line is None or line[2] < res.eps / 2:
+            continue  # too short to read its direction (a chord, a lid)
+        if float(line[1] @ face) > -_COS_WALL:
+            return False
+        read = True
+    return read
 
 
 def behind_recorded(known: KnownContour, res: Resolution, point, radius: float) -> bool:
@@ -56,16 +106,10 @@ def behind_recorded(known: KnownContour, res: Resolution, point, radius: float) 
         return False
     window = WINDOW * res.eps
     for j, _ in hits:
-        pl = known.pieces[j]
-        idx = np.flatnonzero(np.hypot(*(pl - p).T) <= window)
-        if len(idx) < 2:
+        line = _local_chord(known.pieces[j], p, window)
+        if line is None or line[2] < res.eps:
             return False
-        run = pl[idx.min():idx.max() + 1]
-        chord = run[-1] - run[0]
-        length = float(np.hypot(*chord))
-        if length < res.eps:
-            return False
-        u = chord / length
+        run, u, length = line
         if not 0.0 <= float((p - run[0]) @ u) <= length:
             return False  # past the chord's ends
         depth = float((run.mean(axis=0) - p) @ np.array([-u[1], u[0]]))

@@ -16,12 +16,18 @@ and so is a hop of the tip over a gap the controller took as continuous
 traced contour). Case 1 is the tip reaching P_fin along the contour: a P_fin
 the controller's radius (eps/2) reports across a wall thinner than that -- a
 needle's far face -- is slid on past (:func:`core2d.planner.hops.across_wall`):
-one trace of eps without P_fin, then the controller watches for it again, so the
-contour round the wall's end is traced, or registered by the rule of §4.3.3
-where the trace ends there. A slide that ends within that eps by any event (the
-face ended: a convex corner, not a wall) is Case 1 where the controller stopped.
+one trace without P_fin as long as the same-point radius on both sides (2 tip_zone:
+eps with perfect sensing, so the tip ends outside the radius round P_fin), then the
+controller watches for it again, so the contour round the wall's end is traced, or
+registered by the rule of §4.3.3 where the trace ends there. A slide that ends within
+that length by any event (the face ended: a convex corner, not a wall) is Case 1 where
+the controller stopped. (A slide of eps left a noisy tip within the radius, 0.86 eps
+from P_fin on ``numerics`` seed 0 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 5000:
+reported again at once, the second reading failed and the needle was lost.)
 """
 from __future__ import annotations
+
+from functools import partial
 
 import numpy as np
 
@@ -30,6 +36,7 @@ from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.hops import across_wall, hop_to, split_hops
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 from core2d.planner.robot import Robot
+from core2d.planner.thin_walls import far_face
 from core2d.readings import LEFT, RIGHT, TIP
 
 __all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal",
@@ -172,7 +179,7 @@ def is_internal(p2, area, G, joint_i):
     return T_contains(joint_i, area.a, area.b, q) and not in_V(q, area.a, area.b)
 
 
-def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=None):
+def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=None, known=None):
     """Trace one side from D_i; returns (w1 polylines, new areas, cases, ends).
 
     The polylines are oriented like C_{A_i}^{B_i} (material on the right);
@@ -203,8 +210,9 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     res, sign, walls = probe.resolution, 1.0 if toward_B else -1.0, 0
     held = None  # (pieces, pose) where the controller reported P_fin across a wall
+    against = None if known is None else partial(far_face, known, res, p_fin, radius=res.tip_zone)
     while budget():
-        r = probe.trace(v, tau, res.eps if held else 4 * probe.radius,
+        r = probe.trace(v, tau, 2 * res.tip_zone if held else 4 * probe.radius,
                         stop_at=None if held else p_fin, leave_at=p_other)
         if len(r.trace):
             pieces.append(r.trace)
@@ -215,13 +223,13 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
             if r.event == "done":
                 held = None
                 continue  # the wall goes on: the controller watches for P_fin again
-            (pieces, pose1), held, back = held, None, True  # it ended within eps
+            (pieces, pose1), held, back = held, None, True  # it ended within the slide
         if r.event == "reached" or back:
             last = _before_fin(pieces)
             now = r.tip_contact
             if not back and last is not None and now is not None and walls < _MAX_WALLS \
                     and across_wall(pieces, last, now.point, p_fin, pose_fin, sign, res.hop,
-                                    res.near, 2 * res.tip_zone):
+                                    res.near, 2 * res.tip_zone, against):
                 held = (list(pieces), pose1)
                 pieces[-1] = pieces[-1][:-1]  # P_fin lies across a wall, not slid to
                 walls += 1

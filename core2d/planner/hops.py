@@ -93,8 +93,8 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     callable of the face slid along, a unit direction with the material on
     its right; :func:`core2d.planner.thin_walls.far_face` over the robot's
     map) tells it by direction instead: P_fin was recorded on a face running
-    against this one, turned by more than 135 degrees over eps/2 or more of
-    its recorded contour -- a turn far above any jitter. Then P_fin behind
+    against this one, turned by more than 135 degrees over as much of its
+    recorded contour as reads a direction -- a turn far above any jitter. Then P_fin behind
     the face by any depth will do (on its free side it is a slit's far
     wall, which runs against the face too), and the probe's crossing is not
     asked: read off the face's line over ``hop``, whose direction a noisy

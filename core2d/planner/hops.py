@@ -94,9 +94,9 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     its right; :func:`core2d.planner.thin_walls.far_face` over the robot's
     map) tells it by direction instead: P_fin was recorded on a face running
     against this one, turned by more than 135 degrees over as much of its
-    recorded contour as reads a direction -- a turn far above any jitter. Then P_fin behind
-    the face by any depth will do (on its free side it is a slit's far
-    wall, which runs against the face too), and the probe's crossing is not
+    recorded contour as reads a direction -- a turn far above any jitter.
+    Then P_fin behind the face by any depth will do (on its free side it is
+    a slit's far wall, which runs against the face too), and the probe's crossing is not
     asked: read off the face's line over ``hop``, whose direction a noisy
     sensor gives to several degrees, it lies anywhere for a probe along a
     needle (within a degree of its faces), and a probe that came through a

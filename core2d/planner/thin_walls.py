@@ -37,8 +37,9 @@ _COS_WALL = 2.0 ** -0.5
 
 
 def _local_chord(pl, p, window):
-    """The local line of recorded piece ``pl`` at ``p``: (first point, unit direction,
-    length) of the chord over its points within ``window`` of ``p`` (None: fewer than two)."""
+    """The local line of recorded piece ``pl`` (k, 2) at ``p``: (its points from the first to
+    the last within ``window`` of ``p``, the unit direction and the length of their chord);
+    None with fewer than two such points."""
     idx = np.flatnonzero(np.hypot(*(pl - p).T) <= window)
     if len(idx) < 2:
         return None
@@ -64,7 +65,7 @@ def far_face(known: KnownContour, res: Resolution, point, face, radius: float) -
     eps/4). At the stop on ``numerics`` seed 0's needle at sigma 0.3 eps, taxels 0.25 eps
     the recorded faces ran at cos -0.91 .. -1.00 to the face slid along, over 0.47 - 0.90
     eps; with eps/2 asked, ``numerics`` seed 2's needle tip, recorded over 0.29 and 0.38
-    eps, was missed noiselessly (0.972, 1.000 now).
+    eps, was missed noiselessly (0.972 of its reachable contour covered, against 1.000).
 
     >>> res = Resolution.of(1.0, noise=0.075, taxel=0.25)  # sigma 0.3 eps over 16 reads
     >>> k = KnownContour(join=0.5)

@@ -26,7 +26,8 @@ convex end; a slide that ends within eps keeps Case 1 where the controller stopp
   depth the sensor resolves, so its far face is told by the map instead
   (``core2d.planner.thin_walls.far_face``: P_fin was recorded on a face running against the
   one slid along), and the slide goes on past the same-point radius on both sides
-  (2 x ``tip_zone``) so the controller does not report the same P_fin again at once.
+  (2 x ``tip_zone``) so the controller does not report the same P_fin again at once: each
+  P_fin is slid past once.
 
 Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
 """
@@ -92,17 +93,28 @@ def _coarse(seed, keyed=False):
 @pytest.mark.parametrize("seed, keyed", [(0, False), (5000, False), (5000, True)])
 def test_a_needle_thinner_than_the_sensors_jitter_is_told_by_the_map(seed, keyed, monkeypatch):
     """``numerics`` seed 0 at sigma 0.3 eps, taxels 0.25 eps: 0.886 - 0.888 of the reachable
-    contour within eps/2 + 2 sigma before; with the map's reading off it fails again. Seed
-    5000 fails with a slide of eps only (the controller reported the same P_fin 0.86 eps
-    on), keyed seed 5000 when the map's reading also asks the probe's crossing (read 1.35
-    eps from the tip, off a line read over too short a stretch)."""
+    contour within eps/2 + 2 sigma without the map's reading, and it fails so. Keyed seed
+    5000 fails when the map's reading also asks the probe's crossing (read 1.35 eps from the
+    tip, off a line read over too short a stretch). Each P_fin is slid past once: with a
+    slide of eps the tip stayed within the same-point radius (0.86 eps on) and the
+    controller reported the same P_fin again at once (seeds 5000, keyed and not)."""
     import core2d.planner.tracing as tracing
 
+    slid = []
+
+    def counted(*args):
+        wall = across_wall(*args)
+        if wall:
+            slid.append(tuple(np.asarray(args[3], float)))  # P_fin
+        return wall
+
     loops = outline("numerics", np.random.default_rng(0), 1.0)
+    monkeypatch.setattr(tracing, "across_wall", counted)
     res, m = _sense(loops, sensor=_coarse(seed, keyed))
     assert not res.stats.budget_hit
     assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
     assert m["precision_sensor"] >= 0.98
+    assert slid and len(slid) == len(set(slid)), slid
     monkeypatch.setattr(tracing, "far_face", lambda *a, **k: False)  # the map's reading off
     assert _sense(loops, sensor=_coarse(seed, keyed))[1]["coverage_sensor"] < 0.98
 

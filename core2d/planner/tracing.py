@@ -23,7 +23,8 @@ registered by the rule of §4.3.3 where the trace ends there. A slide that ends 
 that length by any event (the face ended: a convex corner, not a wall) is Case 1 where
 the controller stopped. (A slide of eps left a noisy tip within the radius, 0.86 eps
 from P_fin on ``numerics`` seed 0 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 5000:
-reported again at once, the second reading failed and the needle was lost.)
+the controller reported the same P_fin again at once, a slide more for the same wall, and
+where that second reading failed the needle was lost.)
 """
 from __future__ import annotations
 

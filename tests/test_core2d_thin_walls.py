@@ -105,12 +105,12 @@ def test_far_face_needs_a_readable_piece_each_of_which_runs_against():
     face = np.array([-1.0, 0.0])
     assert not far_face(_wall(), COARSE, [3.0, 2.0], face, COARSE.tip_zone)  # nothing near
     short = KnownContour(join=0.5)
-    short.add([[3.0, 0.0], [3.4, 0.0]])  # 0.4 long: no direction to read
+    short.add([[3.0, 0.0], [3.4, 0.0]])  # 0.4 long, under the jitter (0.44): no direction
     assert not far_face(short, COARSE, [3.2, 0.0], face, COARSE.tip_zone)
     both = _wall()
     assert far_face(both, COARSE, [3.0, 0.0], face, COARSE.tip_zone)
     both.add([[x, 0.3] for x in np.arange(5.5, 0.4, -0.5)])  # a second face, running along it
     assert not far_face(both, COARSE, [3.0, 0.1], face, COARSE.tip_zone)
     short_too = _wall()
-    short_too.add([[3.1, 0.3], [3.5, 0.3]])  # a short chord beside it is skipped
+    short_too.add([[3.1, 0.3], [3.5, 0.3]])  # a chord under the jitter beside it: skipped
     assert far_face(short_too, COARSE, [3.0, 0.1], face, COARSE.tip_zone)

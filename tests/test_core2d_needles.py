@@ -7,7 +7,8 @@ F, however long -- was neither traced nor approximated. The trace now slides on 
 P_fin (``core2d.planner.hops.across_wall``: the tip still on the face slid along, P_fin
 behind that face, and the probe that touched P_fin not come through a gap beside the tip) and
 the contour round the needle's end is traced and registered as the paper's flow does for any
-convex end; a slide that ends within eps keeps Case 1 where the controller stopped.
+convex end; a slide that ends within its length (twice the same-point radius: eps with
+perfect sensing) keeps Case 1 where the controller stopped.
 
 * ``numerics`` seed 0 (``tests/outlines.py``): a needle 0.56 eps wide at its base and 39
   eps long out of a star; 0.882 of the reachable contour covered before, the needle's outer

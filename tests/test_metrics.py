@@ -98,6 +98,34 @@ def test_contour_behind_a_w2_chord_is_approximated():
     assert m["covered_length"] - m["w2_credit_length"] == pytest.approx(
         bare["covered_length"], abs=2 * m["spacing"])
     assert bare["w2_credit_length"] == 0.0 and rev["w2_credit_length"] == 0.0
+    assert m["w2_material_arcs"] == 0  # the slot's arc closes round free space
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6])  # the numerics outlines' coordinates
+def test_a_w2_chord_across_a_needle_credits_not_its_tip(offset):
+    """A chord across a wall thinner than tol (a needle 0.1 eps thick at its base, 20 eps
+    long) spans no opening: the arc it lids, the needle's tip, closes round material, and
+    none of it is covered but what lies within tol of the chord. A noisy sensor can read
+    the two faces of such a needle as one; crediting its tip would report a needle never
+    traced as covered."""
+    needle = np.array([[-0.05, -50.0], [0.0, -70.0], [0.05, -50.0]])
+    loops = [np.vstack([BOX[:1], needle, BOX[1:]])]
+    y = -55.0  # the chord, A on the right face, B on the left: its arc runs round the tip
+    half = 0.05 * (70 + y) / 20
+    chord = np.array([[half, y], [-half, y]])
+    outline = np.vstack([loops[0][4:], loops[0][:2], [[-half, y]]])  # all but the tip
+    w1 = [outline, np.vstack([[half, y], loops[0][3:5]])]
+    loops, w1, chord = [lp + offset for lp in loops], [pl + offset for pl in w1], chord + offset
+    bare = metrics(loops, eps=1.0, w1=w1)
+    m = metrics(loops, eps=1.0, w1=w1, w2=[chord])
+    assert m["w2_material_arcs"] == 1 and m["w2_long_arcs"] == 0
+    assert m["w2_credit_length"] == 0.0 and m["coverage"] == bare["coverage"]
+    # independent: both faces of the tip (15 eps of needle each) but their tol nearest
+    # the chord, over the reachable length (every side of the box and the needle)
+    face = np.hypot(0.05, 20.0) * 15 / 20
+    missed = 2 * (face - 0.5)
+    assert m["reachable_length"] == pytest.approx(400 - 0.1 + 2 * np.hypot(0.05, 20.0), abs=0.01)
+    assert m["coverage"] == pytest.approx(1 - missed / m["reachable_length"], abs=2e-3)
 
 
 def test_coincident_ends_make_no_arc():

@@ -12,7 +12,10 @@ Definitions (``tol`` defaults to ``eps / 2``, ``spacing`` to ``tol / 2``):
   or behind a W2 chord (on the arc ``C_A^B`` of a W2 segment: §3.1 regards
   ``L_A^B`` as the approximate surface of ``C_A^B`` when Dist(A, B) < eps),
   over the reachable length (a W2 "arc" longer than the rest of its loop is
-  a reversed chord and credits nothing: ``w2_long_arcs`` counts them).
+  a reversed chord and credits nothing: ``w2_long_arcs`` counts them; nor does
+  an arc that closes round material with its chord, the tip of a wall thinner
+  than ``tol`` that a chord crosses: ``w2_material_arcs`` counts those that would
+  credit reachable contour farther than ``tol`` from W1 u W2).
   ``eps / 2`` is the natural tolerance: every
   point of a W2 chord with ``Dist(A, B) < eps`` lies within ``eps / 2`` of
   ``A`` or ``B``. ``w2_credit_length`` is the part of the covered length that
@@ -67,7 +70,8 @@ _MAX_KEYS = ("hausdorff_detected_to_true", "hausdorff_true_reachable_to_detected
              "spacing", "sensor_tol")
 #: the keys of :func:`slice_metrics` that :func:`sensor_metrics` reports at the sensor's tolerance
 _SENSOR_KEYS = ("covered_length", "coverage", "precise_length", "precision", "w3_unsound_count",
-                "covered_resolvable_length", "coverage_resolvable", "w2_credit_length")
+                "covered_resolvable_length", "coverage_resolvable", "w2_credit_length",
+                "w2_material_arcs")
 
 
 def _segments(polylines) -> tuple[np.ndarray, np.ndarray]:
@@ -108,7 +112,9 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
     ``cross_loop`` (n,) bool, ``offset`` (n,) float (largest distance of A or
     B to the contour), ``arc_length`` (n,) float (0 for cross-loop lids) and
     ``member`` (n, m) bool (samples under each lid), ``loop`` (n,) int (loop
-    of A, -1 without contour). Without any contour
+    of A, -1 without contour) and ``area`` (n,) float (signed area of the arc
+    closed by its chord, A and B at their nearest contour points: positive round
+    free space, the opening the chord spans; negative round material). Without any contour
     every lid counts as cross-loop, with an infinite offset.
 
     Examples
@@ -118,12 +124,15 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
     >>> arcs = lid_arcs(sq, [np.array([[4., 2.], [2., 4.]])], sample_contour(sq, 0.5))
     >>> float(arcs["arc_length"][0])  # down, along the bottom, up, to the middle of the top
     12.0
+    >>> round(float(arcs["area"][0]), 1)  # round material: the square but the corner cut off
+    -13.9
     """
     lids = np.asarray(lids, dtype=np.float64).reshape(-1, 2, 2)
     n, m = len(lids), len(samples.points)
     out = dict(mask=np.zeros(m, dtype=bool), cross_loop=np.zeros(n, dtype=bool),
                loop=np.full(n, -1, dtype=np.int64),
-               offset=np.zeros(n), arc_length=np.zeros(n), member=np.zeros((n, m), dtype=bool))
+               offset=np.zeros(n), arc_length=np.zeros(n), area=np.zeros(n),
+               member=np.zeros((n, m), dtype=bool))
     if n == 0:
         return out
     a, b, loop = contour_edges(loops)
@@ -141,6 +150,7 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
         t = np.nan_to_num(np.clip(np.einsum("ij,ij->i", ends - a[edge], e[edge]) / elen[edge] ** 2, 0, 1))
     s = (edge_s[edge] + t * elen[edge]).reshape(n, 2)
     lp = loop[edge].reshape(n, 2)
+    on_contour = a[edge] + t[:, None] * e[edge]  # A0, B0, A1, ... at their nearest contour points
     out["offset"] = dist.reshape(n, 2).max(axis=1)
     out["cross_loop"] = lp[:, 0] != lp[:, 1]
     out["loop"] = lp[:, 0]
@@ -152,8 +162,22 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
         under = (samples.loop == lp[i, 0]) & ((s[i, 0] - samples.s) % length <= arc)
         out["member"][i] = under
         out["arc_length"][i] = arc
+        out["area"][i] = _closed_area(samples, under, s[i, 0], length, on_contour[2 * i:2 * i + 2])
     out["mask"] = out["member"].any(axis=0)
     return out
+
+
+def _closed_area(samples: ContourSamples, under, s_a: float, length: float, ends) -> float:
+    """Signed area of the polygon A, the samples ``under`` a lid from A on, B (shoelace).
+
+    The arc runs with the material on its right, so it closes round free space
+    (an opening) counter-clockwise, positive, and round material clockwise. The
+    samples, sub-segment midpoints, cut each corner by ``spacing / 2``; A is the origin, so
+    coordinates of 1e6 lose no digits that matter."""
+    idx = np.flatnonzero(under)
+    order = idx[np.argsort((s_a - samples.s[idx]) % length, kind="stable")]
+    x, y = (np.concatenate([ends[:1], samples.points[order], ends[1:]]) - ends[0]).T  # A at 0
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = None,
@@ -202,10 +226,14 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
         d_true = np.full(len(w), np.inf)
         dl = d_det = d_det_pieces = np.zeros(0)
     w2_arcs = lid_arcs(loops, result.w2, samp, resolution=spacing)
-    # an arc longer than the rest of its loop is a reversed chord, not a W2 area
+    # an arc longer than the rest of its loop is a reversed chord, not a W2 area; an arc
+    # round material is a chord across a thin wall's tip: neither spans an opening (§3.1)
     w2_long = w2_arcs["arc_length"] > 0.5 * np.append(samp.loop_lengths, 0.0)[w2_arcs["loop"]]
-    behind_w2 = w2_arcs["member"][~w2_long].any(axis=0)
+    w2_material = ~w2_long & (w2_arcs["area"] < 0)
+    behind_w2 = w2_arcs["member"][~w2_long & ~w2_material].any(axis=0)
     covered = reach & ((d_true <= tol) | behind_w2)
+    # the arcs round material that would credit reachable contour farther than tol
+    w2_material &= (w2_arcs["member"] & (reach & (d_true > tol))).any(axis=1)
     reachable_length = float(w[reach].sum())
     resolved = (resolvable(loops, samp.points, eps) if resolved is None
                 else np.asarray(resolved, dtype=bool))
@@ -255,6 +283,7 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
         "w2_arc_length": float(w[behind_w2].sum()),
         "w2_credit_length": float(w[covered & (d_true > tol)].sum()),
         "w2_long_arcs": int(w2_long.sum()),
+        "w2_material_arcs": int(w2_material.sum()),
         "w3_count": len(result.w3),
         "w3_lidded_length": lidded,
         "w3_unreachable_length": lid_unreachable,

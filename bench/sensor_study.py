@@ -95,7 +95,7 @@ def _score(loops, contact, ws, eps, levels, seed, budget, seeds=1, keyed=False,
                      "repeat": j, "keyed": keyed, "reads": n, "band_length": float(weights[reach & band].sum()),
                      "covered_band_length_sensor": covered, **{k: m[k] for k in (
             "coverage", "covered_length", "coverage_sensor", "covered_length_sensor",
-            "w2_credit_length_sensor",
+            "w2_credit_length_sensor", "w2_material_arcs_sensor",
             "coverage_resolvable_sensor", "covered_resolvable_length_sensor",
             "resolvable_length",
             "reachable_length", "precision", "precise_length", "precision_sensor",

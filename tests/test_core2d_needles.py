@@ -28,7 +28,11 @@ perfect sensing) keeps Case 1 where the controller stopped.
   (``core2d.planner.thin_walls.far_face``: P_fin was recorded on a face running against the
   one slid along), and the slide goes on past the same-point radius on both sides
   (2 x ``tip_zone``) so the controller does not report the same P_fin again at once: each
-  P_fin is slid past once.
+  P_fin is slid past once;
+* the same with sensor seed 1000, where the probe's body, lying along the needle, reaches a
+  P_fin read just ahead of the tip (``reached-body``, Case 2-2): its area would be W2 at once,
+  so the trace slides on past it too; a body stop whose area is longer is left to the paper's
+  flow (``comb`` seed 4 at sigma 0.1 eps costs what it costs without the slide).
 
 Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
 """

@@ -38,9 +38,8 @@ reads P_fin across a wall, the trace slides on past it as after Case 1 (0.997); 
 that ends within its length is Case 2-2 where the controller stopped. A longer area is
 explored as any other, so the rule asks nothing there (asked of every such stop, it cost
 ``comb`` seed 4 at sigma 0.1 eps, sensor seed 2004, 4,427 -> 5,362 motions for the same
-coverage). Perfect sensing is
-left as it was: there the rule changed motions only (``islands`` seed 3 +68, ``numerics``
-seed 5 -11, coverage equal).
+coverage). Perfect sensing is left as it was: there the rule changed motions only
+(``islands`` seed 3 +68, ``numerics`` seed 5 -11, coverage equal).
 """
 from __future__ import annotations
 
@@ -226,7 +225,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     pieces = [local.point[None]]
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     res, sign, walls = probe.resolution, 1.0 if toward_B else -1.0, 0
-    held = None  # (pieces, pose) where the controller reported P_fin across a wall
+    held = None  # (pieces, pose, event) where the controller reported P_fin across a wall
     against = None if known is None else partial(far_face, known, res, p_fin, radius=res.tip_zone)
     while budget():
         r = probe.trace(v, tau, 2 * res.tip_zone if held else 4 * probe.radius,
@@ -235,7 +234,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
             pieces.append(r.trace)
         p1 = pieces[-1][-1]
         pose1 = Posture(r.before_joint, r.before_direction)
-        back, event = False, r.event  # back: Case 1 where the controller stopped, after all
+        back, event = False, r.event  # back: the held stop (Case 1 or 2-2) stands, after all
         if held is not None:
             if r.event == "done":
                 held = None

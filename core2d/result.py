@@ -38,7 +38,11 @@ class AreaRecord:
         hopped over a gap -- a step longer than eps / 4 that turns concave,
         or Case 1 passing P_fin across a gap: the contour between was not
         traced), ``"escape"``, ``"revisit"`` (a pass
-        through a deferred lid found a new contact), ``"limit"``,
+        through a deferred lid found a new contact), ``"limit"`` (a budget
+        hit, or the second side of D_i where the probe did not come back to
+        D_i), ``"reentry"`` (the stretch from D_i to where the probe came
+        back instead: the second side is traced from there,
+        :func:`core2d.planner.other_side.second_side`),
         ``"audit"`` (a stretch between a loose end and a loose start of the
         recorded contour that no area held), ``"loose"`` (such a stretch the
         audit left untraced: reported ``"unknown"`` at the end).

@@ -29,10 +29,17 @@ perfect sensing) keeps Case 1 where the controller stopped.
   one slid along), and the slide goes on past the same-point radius on both sides
   (2 x ``tip_zone``) so the controller does not report the same P_fin again at once: each
   P_fin is slid past once;
+* the same with sensor seed 2000 (keyed seed 4000): D_i at the needle's base, the probe
+  brought back to D_i for the second side meets the needle's face 1.3 - 2.5 eps out along it
+  (:func:`core2d.planner.other_side.second_side`); the trace starts there, and the stretch
+  skipped is an area of its own (0.789 when that side was left to a fresh area, whose trace
+  from the other pocket reached its P_fin across the needle's base);
 * the same with sensor seed 1000, where the probe's body, lying along the needle, reaches a
   P_fin read just ahead of the tip (``reached-body``, Case 2-2): its area would be W2 at once,
   so the trace slides on past it too; a body stop whose area is longer is left to the paper's
-  flow (``comb`` seed 4 at sigma 0.1 eps costs what it costs without the slide).
+  flow (``comb`` seed 4 at sigma 0.1 eps costs what it costs without the slide); a slide past
+  a body stop that ends within its length leaves Case 2-2 where the controller stopped (a
+  scripted probe's readings).
 
 Coverage is :func:`core2d.truth.metrics.slice_metrics`'s, against the true outline.
 """
@@ -128,6 +135,26 @@ def test_a_needle_thinner_than_the_sensors_jitter_is_told_by_the_map(seed, keyed
     assert _sense(loops, sensor=_coarse(seed, keyed))[1]["coverage_sensor"] < 0.98
 
 
+@pytest.mark.parametrize("seed, keyed", [(2000, False), (4000, True)])
+def test_the_second_side_starts_where_the_probe_came_back_to(seed, keyed, monkeypatch):
+    """Theorem 4 (A) at the needle's base of ``numerics`` seed 0, sigma 0.3 eps, taxels 0.25
+    eps: brought back along the posture at D_i, the probe touches the needle's face 1.3 - 2.5
+    eps out. The second side is traced from there (its skipped stretch registered
+    ``reentry``); registered unknown instead (``limit``), the needle is lost: 0.789."""
+    import core2d.planner.other_side as other_side
+
+    loops = outline("numerics", np.random.default_rng(0), 1.0)
+    res, m = _sense(loops, sensor=_coarse(seed, keyed))
+    assert not res.stats.budget_hit
+    assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
+    assert m["precision_sensor"] >= 0.98
+    assert any(a.rule == "reentry" for a in res.areas)
+    monkeypatch.setattr(other_side, "is_internal", lambda *a: False)  # every C: "limit"
+    res_off, m_off = _sense(loops, sensor=_coarse(seed, keyed))
+    assert not any(a.rule == "reentry" for a in res_off.areas)
+    assert m_off["coverage_sensor"] < 0.98, m_off["coverage_sensor"]
+
+
 def test_a_body_stop_before_an_area_explored_anyway_is_case_2_2(monkeypatch):
     """The slide past a P_fin the body reached is asked only where its Case 2-2 area would
     be W2 at once: a longer area is explored as any other. ``comb`` seed 4 at sigma 0.1 eps,
@@ -204,3 +231,62 @@ def test_a_slide_past_p_fin_that_ends_within_eps_is_case1_where_the_controller_s
     motions_off, coverage_off = run()
     assert coverage >= coverage_off
     assert motions <= motions_off + 10, (motions, motions_off)
+
+
+def _scripted_probe(readings, res):
+    """A probe whose traces return ``readings`` in turn (what each trace was asked: ``asked``)."""
+    from types import SimpleNamespace
+
+    asked = []
+
+    def trace(v, tau, max_dist, stop_at=None, leave_at=None):
+        asked.append((max_dist, stop_at))
+        return readings[len(asked) - 1]
+
+    probe = SimpleNamespace(resolution=res, radius=0.05, trace=trace,
+                            joint=np.array([0.0, 50.0]), direction=np.array([0.0, -1.0]))
+    return probe, asked
+
+
+def _trace_reading(event, xs, tip):
+    """A trace along y = 0 (material below) through ``xs``, the tip's contact at ``tip``."""
+    from types import SimpleNamespace
+
+    contact = None if tip is None else SimpleNamespace(point=np.asarray(tip, float), face="tip")
+    return SimpleNamespace(event=event, trace=np.array([[x, 0.0] for x in xs]),
+                           tip_contact=contact, contacts=[] if contact is None else [contact],
+                           before_joint=np.array([xs[-1], 50.0]),
+                           before_direction=np.array([0.0, -1.0]),
+                           joint=np.array([xs[-1], 50.0]), direction=np.array([0.0, -1.0]))
+
+
+def test_a_body_stop_whose_slide_ends_within_its_length_is_case_2_2(monkeypatch):
+    """The held body stop (``tracing._body_across`` read P_fin across a wall): the trace
+    slides on past P_fin for 2 tip_zone; when that slide ends early by another event (here
+    the contact lost) the stop stands -- Case 2-2 from P_1st, the last contact before the
+    slide, to P_fin -- and the slide's steps are not W1. Without the held event the run
+    would register Case 2-3 from where the slide ended."""
+    import core2d.planner.tracing as tracing
+    from core2d.planner.areas import Area
+    from core2d.planner.local_search import LocalResult
+    from core2d.resolution import Resolution
+
+    res = Resolution.of(1.0, noise=0.1)
+    p_fin = np.array([5.4, -0.2])  # read on the far face of a wall below the face slid along
+    down = Posture(np.array([0.0, 50.0]), np.array([0.0, -1.0]))
+    area = Area(np.array([-3.0, 0.0]), p_fin, down, Posture(np.array([60.0, -0.2]),
+                                                           np.array([-1.0, 0.0])), index=7)
+    stop = _trace_reading("reached-body", np.arange(0.25, 5.01, 0.25), [5.0, 0.0])
+    slide = _trace_reading("lost", [5.25, 5.5], None)  # ends within 2 tip_zone
+    probe, asked = _scripted_probe([stop, slide], res)
+    start = _trace_reading("contact", [0.0], [0.0, 0.0])
+    local = LocalResult(reading=start, point=np.zeros(2), Y1=1, Y2=0, iterations=0)
+    monkeypatch.setattr(tracing, "_body_across", lambda *a: True)
+    lines, new, cases, _ = tracing.trace_side(probe, area, None, np.array([0.0, 50.0]), local,
+                                              True, lambda: len(asked) < 2)
+    assert asked[1] == (2 * res.tip_zone, None)  # the slide: no P_fin watched for
+    assert cases == ["case2-2"]
+    assert [k.rule for k in new] == ["case2-2"]
+    np.testing.assert_allclose(new[0].a, [5.0, 0.0])  # P_1st: the stop's last contact
+    np.testing.assert_allclose(new[0].b, p_fin)
+    assert max(float(pl[:, 0].max()) for pl in lines) <= 5.0  # the slide's steps are not W1

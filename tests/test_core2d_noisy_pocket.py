@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from core2d.planner.grazing import end_radius
-from core2d.planner.run import back_at
+from core2d.planner.other_side import back_at
 from core2d.resolution import Resolution
 from noisy_runs import coverages
 from outlines import slotted_block

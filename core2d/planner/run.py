@@ -47,13 +47,14 @@ from core2d.planner.areas import Area, register
 from core2d.planner.audit import audit, report_leftovers
 from core2d.planner.bootstrap import bootstrap
 from core2d.planner.budget import Budget
-from core2d.planner.detection import reestablish, single_detection, single_posture
+from core2d.planner.detection import single_detection, single_posture
 from core2d.planner.flow import PULLING, Flow
 from core2d.planner.grazing import beyond_ends, end_radius, resolves_half_eps
 from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.mouths import close_unresolved, is_mouth, traced_gaps
 from core2d.planner.openings import SweptRobot
+from core2d.planner.other_side import second_side
 from core2d.planner.regions import Posture
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
@@ -62,7 +63,7 @@ from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, spl
 from core2d.planner.w3_checks import closes_loop
 from core2d.result import AreaRecord, SliceResult
 
-__all__ = ["explore", "Exploration", "Budget", "back_at"]
+__all__ = ["explore", "Exploration", "Budget"]
 
 #: generations in a row without new traced contour before §4.4 escape
 STALE = 3
@@ -70,27 +71,6 @@ STALE = 3
 
 def _same(p, q, tol):
     return magnitude(np.asarray(p, float) - np.asarray(q, float)) <= tol
-
-
-def back_at(res, reading, d_i) -> bool:
-    """Is the probe, brought back along the posture that stood at D_i to
-    trace the other side (Theorem 4), on D_i again? ``reading``: the
-    insertion's Reading; ``d_i``: (2,) float. With a perfect sensor:
-    a tip contact. With a noisy one the tip contact must also lie within
-    the same-contact radius of D_i: the recorded posture is a reading, off
-    by the noise, and the probe reached D_i by the bisection's swings, so
-    the straight insertion along it can stop on a corner the posture
-    grazed (the body contact of Y1 = 2) -- the trace then started there
-    and its first step made a W1 segment through material
-    (``textured_pocket`` z0 and z6 at sigma 0.1 eps: 53 eps long, 7.6 eps
-    deep). Not back at D_i, the side is registered unknown (``limit``).
-    Only while :func:`~core2d.planner.grazing.resolves_half_eps` (measured
-    there; at sigma 0.3 eps the same W1 was seen on ``twin_posts`` and
-    ``mushroom`` z4, not measured with this test)."""
-    tip = reading.tip_contact
-    if tip is None:
-        return False
-    return not resolves_half_eps(res) or magnitude(tip.point - d_i) <= res.tip_zone
 
 
 class Exploration:
@@ -293,12 +273,13 @@ class Exploration:
             if self.flow.detection:
                 attach_pivot_G(dq, probe, q.face)
         for k, toward_B in enumerate(sides):
-            if k and not back_at(self.res, reestablish(probe, pose_d), local.point):
-                kids.append(register(local.point, pose_d, area.a if not toward_B else area.b,
-                                     area.pose_a if not toward_B else area.pose_b,
-                                     not toward_B, area.index, "limit", area.depth + 1))
-                continue
-            lines, new, _, ends = trace_side(probe, area, G, joint_i, local, toward_B,
+            start = local
+            if k:  # brought back to D_i; where it is not, C_{D_i}^{P_fin} begins elsewhere
+                start, skipped = second_side(self, area, G, joint_i, local, toward_B)
+                kids.extend(skipped)
+                if start is None:
+                    continue
+            lines, new, _, ends = trace_side(probe, area, G, joint_i, start, toward_B,
                                              self.budget, self.flow, self.known)
             traced += self.traced(lines, ends)
             kids.extend(new)

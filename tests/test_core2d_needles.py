@@ -264,8 +264,8 @@ def test_a_body_stop_whose_slide_ends_within_its_length_is_case_2_2(monkeypatch)
     """The held body stop (``tracing._body_across`` read P_fin across a wall): the trace
     slides on past P_fin for 2 tip_zone; when that slide ends early by another event (here
     the contact lost) the stop stands -- Case 2-2 from P_1st, the last contact before the
-    slide, to P_fin -- and the slide's steps are not W1. Without the held event the run
-    would register Case 2-3 from where the slide ended."""
+    slide, to P_fin -- and the slide's steps are not W1. With the held stop restored but
+    not its event, the same readings give Case 1 (tried)."""
     import core2d.planner.tracing as tracing
     from core2d.planner.areas import Area
     from core2d.planner.local_search import LocalResult

@@ -80,7 +80,7 @@ def second_side(run, area, G, joint_i, local, toward_B):
     reached P_fin across the base (Case 1) and the whole needle was lost: 0.79 of
     the reachable contour covered within eps/2 + 2 sigma (sensor seed 2000; keyed
     seeds 2000, 3000, 4000). Traced from C: 1.00 (keyed 2000: 0.999, 4000: 1.00;
-    3000: 0.89, the needle's outer 16 eps, thinner than the jitter, lost on a
+    3000: 0.89, the needle's outer 19 eps, thinner than the jitter, lost on a
     later area). Split at C instead, both halves explored afresh: 0.91.
     """
     res, probe = run.res, run.probe

@@ -284,7 +284,8 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
     aim = Aim(run.res, np.asarray(area.a, float), np.asarray(area.b, float))
     touches = (Touches(run.res, aim.a, aim.b, lid_end_radius(run.res, area.dist))
                if lines and applies(run.res) else None)  # a noisy sensor's W2 by touch
-    fill = (Fill(touches, aim, min(MAX_SWEEP, 2 * int(np.ceil(area.dist / run.res.w2_dist))))
+    fill = (Fill(touches, aim, min(MAX_SWEEP, 2 * int(np.ceil(area.dist / run.res.w2_dist))),
+                 lines)
             if touches is not None else None)  # then passes into the touches' gaps
     while (planned := plan.next()) is not None or (
             fill is not None and not escaped and (planned := fill.next()) is not None):
@@ -318,7 +319,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
                 area.a, area.b, c):  # its disc closed to the lines after it
             blocked.block(c, blockers.radius)
         if filling:  # a pass into a gap: its landing steers the next
-            if c is not None:
+            if c is not None and shift is not None:
                 aim.record(shift, c)
             continue
         again = None if c is None else aim.landed(point, direction, c, shift)

@@ -247,16 +247,16 @@ def test_deep_slot_at_sigma_03_keeps_its_slot_open(monkeypatch):
     """``deep_slot`` at sigma 0.3 eps, taxels 0.25 eps, 4 slices, seed 0: each slice's
     region against its true section (shapely areas of the section's loops, not the
     planner's), closed without and with the carve: the area filled outside the section
-    falls by more than half (397 -> 181 units² when the carve came, 469 -> 232 with the
-    planner of ``e7eefbb`` and since); the section's area missed grows
-    by at most 2 % of the slot's. The planner runs without its swing passes
+    falls by more than half (397 -> 181 units² when the carve came; 469 -> 232, 0.495, with
+    the planner of ``d60ea59``); the section's area missed grows by at most 2 % of the
+    slot's. The planner runs without three rules that line the slot's walls where unknown
+    lids were and so leave the carve less to do, measured at ``d60ea59``: its swing passes
     (:mod:`core2d.planner.swing_passes`), the W2 chords at the ends of areas closed as
     traced (:func:`core2d.planner.mouths.end_chords`) and the Fill's passes through free
-    lid samples (:class:`core2d.planner.touched.Fill`): each lines the slot's walls where
-    unknown lids were, and leaves the carve less to do (with the first two 203 -> 120
-    units², the chords alone 293 -> 165, the Fill's passes alone 308 -> 163: 0.53). The slices
-    here are those the carve was measured on: one read per reading point (``reads=1``),
-    the coarse sensor the carve is for."""
+    lid samples (:class:`core2d.planner.touched.Fill`). With all three 405 -> 207 units²
+    (0.51), the chords alone 441 -> 231, the swings and chords 408 -> 212, the Fill's
+    passes alone 308 -> 163. The slices here are those the carve was measured on: one
+    read per reading point (``reads=1``), the coarse sensor the carve is for."""
     import core2d.planner.mouths as mouths
     import core2d.planner.revisit as revisit
     import core2d.planner.touched as touched

@@ -26,6 +26,10 @@ Embree backend) it prints, measured in one run:
 * ``peak MiB`` -- peak resident memory of the process that sensed the slices
   (after), and what it held before sensing (imports, mesh, slices).
 
+``--noise S --taxel T [--keyed-noise]`` senses both sides through a sensor (noise and
+taxel spacing in eps, the reads averaged as ``recon3d run`` averages them, sensor seed =
+the slice's index): what a noisy run costs, and whether a change keeps its results.
+
 ``--tols`` adds a table of peak memory and time against the contact
 resolution (tol = eps x share), which the windows of the simulator keep
 bounded. Times are CPU seconds: the machine may be shared; compare the
@@ -34,6 +38,7 @@ ratios, which are measured side by side.
     python -m bench.bench_sensing [--slices 4] [--repeat 1] [--scenes a,b] [--before REV]
                                   [--reference REV] [--no-before] [--raw-before]
                                   [--tols 0.05,0.005] [--json out.json]
+                                  [--noise S] [--taxel T] [--keyed-noise]
 
 The first line printed names both commits (``+dirty``: uncommitted changes).
 """
@@ -66,10 +71,13 @@ def export(rev: str, into: Path) -> Path:
     return dest
 
 
-def sense(root: Path, scene: str, slices: int, out: Path, raw=False, tol_share=None) -> dict:
-    """Run the worker for one checkout and scene; its JSON document."""
+def sense(root: Path, scene: str, slices: int, out: Path, raw=False, tol_share=None,
+          sensor=None) -> dict:
+    """Run the worker for one checkout and scene; its JSON document. ``sensor``:
+    ``"NOISE,TAXEL,KEYED"`` (module doc)."""
     cmd = [sys.executable, str(WORKER), str(root), scene, str(slices), str(out)]
     cmd += ["--raw"] * raw + (["--tol-share", str(tol_share)] if tol_share else [])
+    cmd += ["--sensor", sensor] if sensor else []
     subprocess.run(cmd, check=True, cwd=str(root))
     return json.loads(out.read_text())
 
@@ -246,7 +254,14 @@ def main(argv=None) -> int:
     p.add_argument("--tols", help="tol / eps shares for the memory table, e.g. 0.05,0.005")
     p.add_argument("--tol-scene", default="deep_slot", help="scene of the memory table")
     p.add_argument("--json", help="write the rows to this file")
+    p.add_argument("--noise", type=float, default=0.0, help="sensor noise sigma in eps")
+    p.add_argument("--taxel", type=float, default=0.0, help="taxel spacing in eps")
+    p.add_argument("--keyed-noise", action="store_true", help="keyed sensor draws")
     args = p.parse_args(argv)
+    if args.noise < 0 or args.taxel < 0:
+        p.error("--noise and --taxel must be >= 0")
+    sensor = (f"{args.noise},{args.taxel},{int(args.keyed_noise)}"
+              if args.noise or args.taxel else None)
     scenes = args.scenes.split(",") if args.scenes else meshes.names()
     unknown = sorted(set(scenes) - set(meshes.names()))
     if unknown or args.slices < 1 or args.repeat < 1:
@@ -266,16 +281,20 @@ def main(argv=None) -> int:
             for k in range(args.repeat):
                 if old is not None:
                     runs_b.append(sense(old, scene, args.slices, tmp / "b.json",
-                                        raw=k == 0 and args.raw_before))
-                runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0))
+                                        raw=k == 0 and args.raw_before, sensor=sensor))
+                runs_a.append(sense(ROOT, scene, args.slices, tmp / "a.json", raw=k == 0,
+                                    sensor=sensor))
             cmp_rows = []
             if runs_b:
                 doc_ref = runs_b[0] if ref is old else sense(ref, scene, args.slices,
-                                                             tmp / "r.json")
+                                                             tmp / "r.json", sensor=sensor)
                 cmp_rows = compare(scene, doc_ref, runs_a[0], args.slices)
             rows.append(scene_row(scene, runs_b, runs_a, cmp_rows))
             print(f"  {scene}: done", file=sys.stderr, flush=True)
         commits = (_commit(args.before) if args.with_before else "-", _this_checkout())
+        if sensor:
+            print(f"sensor: noise {args.noise:g} eps, taxel {args.taxel:g} eps"
+                  f"{', keyed draws' if args.keyed_noise else ''}, sensor seed = slice index")
         print_table(rows, commits)
         if args.tols:
             tols = tol_table(tmp, args.tol_scene, args.slices,

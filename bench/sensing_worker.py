@@ -3,6 +3,7 @@
 Run as a script by :mod:`bench.bench_sensing`, never imported by the project::
 
     python bench/sensing_worker.py ROOT SCENE SLICES OUT [--raw] [--tol-share F]
+                                   [--sensor NOISE,TAXEL,KEYED]
 
 ``ROOT`` is the checkout whose ``meshes``, ``slicer`` and ``core2d`` are used
 (it goes first on ``sys.path``), so the same script times the commit before
@@ -148,7 +149,7 @@ def _logged_engine(base):
     return Logged
 
 
-def _raw(core2d, cut, eps, tol) -> dict:
+def _raw(core2d, cut, eps, tol, sensor=None) -> dict:
     """Sense ``cut`` again through a ray log and replay its rays on raw embreex."""
     import importlib.util
 
@@ -168,7 +169,7 @@ def _raw(core2d, cut, eps, tol) -> dict:
     engine_module.CompiledEngine = _logged_engine(compiled)
     try:
         center, radius = cut.bounding_circle()
-        res = core2d.sense_slice(logged, (center, radius + eps), eps, tol=tol)
+        res = core2d.sense_slice(logged, (center, radius + eps), eps, tol=tol, sensor=sensor)
     finally:
         engine_module.CompiledEngine = compiled
     logged.flush()
@@ -204,6 +205,7 @@ def main(argv) -> int:
     root, scene, count, out = argv[:4]
     raw = "--raw" in argv
     share = float(argv[argv.index("--tol-share") + 1]) if "--tol-share" in argv else None
+    stated = argv[argv.index("--sensor") + 1].split(",") if "--sensor" in argv else None
     sys.path.insert(0, root)
     logging.disable(logging.WARNING)
     import core2d
@@ -213,6 +215,16 @@ def main(argv) -> int:
     mesh = meshes.load(scene)
     eps = float(np.linalg.norm(np.ptp(mesh.bounds, axis=0)) / 200)
     tol = None if share is None else eps * share
+
+    def sensor(index):
+        """The sensor of slice ``index`` (None: the paper's perfect one)."""
+        if stated is None:
+            return None
+        from core2d.resolution import repeated_reads
+
+        noise, taxel, keyed = float(stated[0]), float(stated[1]), stated[2] == "1"
+        return core2d.SensorModel.of_eps(eps, noise, taxel, int(index), keyed=keyed,
+                                         reads=repeated_reads(1.0, noise, taxel))
     cuts = [c for c in slicer.slice_mesh(mesh, axis="z", count=int(count)) if c.loops]
     for cut in cuts:  # build the scenes and load compiled code before timing
         cut.contact("embree").cast(np.zeros((1, 2)), np.array([[1.0, 0.0]]), 1.0)
@@ -224,7 +236,7 @@ def main(argv) -> int:
     if cuts:  # load every compiled kernel the planner and the simulator use
         center, radius = cuts[0].bounding_circle()
         core2d.sense_slice(cuts[0].contact("embree"), (center, radius + eps), eps, tol=tol,
-                           max_motions=200)
+                           max_motions=200, sensor=sensor(cuts[0].index))
     # as the product senses (recon3d.sensing.pool): what exists before the sensing frozen
     # out of the cyclic collector, so that its full collections walk only what sensing made
     gc.freeze()
@@ -234,7 +246,8 @@ def main(argv) -> int:
         center, radius = cut.bounding_circle()
         ws = (center, radius + eps)
         t0 = time.process_time()
-        res = core2d.sense_slice(cut.contact("embree"), ws, eps, tol=tol)
+        res = core2d.sense_slice(cut.contact("embree"), ws, eps, tol=tol,
+                                 sensor=sensor(cut.index))
         sec = time.process_time() - t0
         st = res.stats
         rows.append(dict(index=cut.index, seconds=sec, motions=st.motions, rays=st.rays,
@@ -243,7 +256,7 @@ def main(argv) -> int:
     doc = dict(scene=scene, slices=rows, peak_mib=_peak_mib(), base_mib=base)
     if raw:
         for cut, row in zip(cuts, rows):
-            row.update(_raw(core2d, cut, eps, tol))
+            row.update(_raw(core2d, cut, eps, tol, sensor(cut.index)))
         doc["raw_seconds"] = sum(r["raw_seconds"] for r in rows)
         doc["large_seconds"] = sum(r["large_seconds"] for r in rows)
     with open(out, "w") as fh:

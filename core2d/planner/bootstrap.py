@@ -29,7 +29,7 @@ DECIDED = 3.0
 def _probe_from(probe: Robot, angle, reads: int = 1):
     """Insert radially from the circle point at ``angle``; (contact, posture),
     each the mean of ``reads`` readings where the probe stopped (the first
-    the insertion's own, the others :meth:`Robot.sense`: no motion)."""
+    the insertion's own, the others :meth:`Robot.reread`: no motion)."""
     start = probe.center + probe.radius * unit(angle)
     probe.approach(start, -unit(angle))
     r = probe.insert(2 * probe.radius)
@@ -38,7 +38,7 @@ def _probe_from(probe: Robot, angle, reads: int = 1):
         return None
     if reads <= 1:
         return c.point, Posture(r.joint, r.direction)
-    got = [r] + [probe.sense() for _ in range(reads - 1)]
+    got = [r, *probe.reread(reads - 1)]
     got = [x for x in got if x.tip_contact is not None]
     t = np.sum([x.direction for x in got], axis=0)
     return (np.mean([x.tip_contact.point for x in got], axis=0),

@@ -168,7 +168,7 @@ def reread_torque(probe: Robot, reading: Reading) -> Reading:
     k = probe.resolution.torque_reads
     if k <= 1:
         return reading
-    reads = [reading] + [probe.sense() for _ in range(k - 1)]
+    reads = [reading, *probe.reread(k - 1)]
     ccw = sum(x.blocked_ccw for x in reads) * 2 > k
     cw = sum(x.blocked_cw for x in reads) * 2 > k
     return replace(reading, blocked_ccw=ccw, blocked_cw=cw)

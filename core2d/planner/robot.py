@@ -62,6 +62,10 @@ class Robot(Protocol):
         """Read the sensors again where the probe stands (no motion: the
         readings of a noisy sensor differ from one read to the next)."""
 
+    def reread(self, count: int) -> list[Reading]:
+        """``count`` more readings where the probe stands, as ``count`` calls of
+        :meth:`sense` would return them (no motion)."""
+
     def approach(self, point: np.ndarray, direction: np.ndarray) -> Reading:
         """Free transfer to the line through ``point`` along ``direction``."""
 

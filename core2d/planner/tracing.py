@@ -99,7 +99,7 @@ def reread_jump(probe: Robot, r):
     """P_2nd of a Case 2 jump (§4.3.2) and the posture that touched it:
     with a noisy contact sensor the means of
     :attr:`~core2d.resolution.Resolution.contact_reads` readings where the
-    probe stopped (the jump's own and :meth:`Robot.sense`, no motion), else
+    probe stopped (the jump's own and :meth:`Robot.reread`, no motion), else
     the one reading.
 
     Parameters
@@ -144,8 +144,7 @@ def reread_jump(probe: Robot, r):
         return c.point, Posture(r.joint, r.direction)
     same = probe.resolution.tip_zone
     pts, joints, dirs = [c.point], [r.joint], [r.direction]
-    for _ in range(k - 1):
-        x = probe.sense()
+    for x in probe.reread(k - 1):
         tip = x.tip_contact
         if tip is not None and np.hypot(*(tip.point - c.point)) <= same:
             pts.append(tip.point)

@@ -80,6 +80,10 @@ class Recorder:
         """Read the sensors again (no motion: not logged)."""
         return self.robot.sense()
 
+    def reread(self, count):
+        """Read the sensors ``count`` more times (no motion: not logged)."""
+        return self.robot.reread(count)
+
     # ------------------------------------------------------------- motions
     def _do(self, kind, call, *args, torque=0, **kw):
         # the probe replaces its joint array at each move (never writes into it):

@@ -157,22 +157,30 @@ class Sensor:
         self.length = float(length)
         self.rng = np.random.default_rng(model.seed)
         self._reads: dict[bytes, int] = {}  # keyed: times each true posture was read
+        self._inc = self.rng.bit_generator.state["state"]["inc"]  # PCG64's, for _restart
         self.noise = model.read_noise  # the means of ``model.reads`` reads
         self.torque_noise = model.read_torque_noise
         self.count = 0  # reads taken: reading points x model.reads (not for perfect sensing)
 
-    def _key(self, joint, direction) -> None:
+    def _key(self, joint, direction, count: int = 1) -> tuple[bytes, int]:
         """Keyed streams: the generator restarted at the state that the seed, the true
         posture (``joint``, ``direction``) and the number of earlier reads of it give
-        (BLAKE2b of the three; PCG64's state is 128 bits)."""
+        (BLAKE2b of the three; PCG64's state is 128 bits). ``count`` > 1: as many reads
+        booked at once, the generator restarted for the first; each later one by
+        :meth:`_restart` with the number it is given."""
         pose = struct.pack("<Q4d", self.model.seed % 2**64, *joint, *direction)
         n = self._reads.get(pose, 0)
-        self._reads[pose] = n + 1
+        self._reads[pose] = n + count
+        self._restart(pose, n)
+        return pose, n
+
+    def _restart(self, pose: bytes, n: int) -> None:
+        """Restart the generator at the state of the ``n``-th read of ``pose`` (its
+        increment, which the seed fixed, kept)."""
         digest = hashlib.blake2b(pose + struct.pack("<Q", n), digest_size=16).digest()
-        state = self.rng.bit_generator.state
-        state["state"]["state"] = int.from_bytes(digest, "little")
-        state["has_uint32"] = state["uinteger"] = 0
-        self.rng.bit_generator.state = state
+        self.rng.bit_generator.state = {
+            "bit_generator": "PCG64", "has_uint32": 0, "uinteger": 0,
+            "state": {"state": int.from_bytes(digest, "little"), "inc": self._inc}}
 
     def _jitter(self, shape) -> np.ndarray:
         return self.rng.normal(0.0, self.noise, shape) if self.noise else np.zeros(shape)
@@ -243,3 +251,91 @@ class Sensor:
             kw["before_joint"], kw["before_direction"] = self.pose(r.before_joint,
                                                                    r.before_direction)
         return replace(r, joint=seen[0], direction=seen[1], contacts=contacts, **kw)
+
+    def readings(self, r: Reading, intrusion=None, count: int = 1) -> list[Reading]:
+        """``count`` readings of the one true reading ``r`` (a probe standing still):
+        what ``count`` calls of :meth:`reading` return, the same draws in the same
+        order, made in one call of the generator per reading point (keyed) or per
+        ``count`` (one stream) instead of one per contact and axis.
+
+        Every value is computed as :meth:`reading` computes it (``s z`` for a draw ``z``
+        of scale ``s``, as numpy's ``normal(0, s)`` makes it, the same sums in the same
+        order, ``math`` for the angle), so each reading is the same to the bit
+        (``tests/test_core2d_sensor_rereads.py``).
+        A reading with a trace or a posture before it takes :meth:`reading` one by one.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from core2d.readings import Contact
+        >>> r = Reading(np.zeros(2), np.array([0.0, 1.0]), (Contact(np.array([0.0, 5.0]), TIP, 5.0),))
+        >>> one, two = Sensor(SensorModel(noise=0.1, seed=3), 5.0), Sensor(SensorModel(noise=0.1, seed=3), 5.0)
+        >>> a = [one.reading(r) for _ in range(3)]
+        >>> b = two.readings(r, None, 3)
+        >>> all(np.array_equal(x.contacts[0].point, y.contacts[0].point) for x, y in zip(a, b))
+        True
+        """
+        model = self.model
+        if model.ideal or count < 1:
+            return [r] * max(count, 0)
+        if len(r.trace) or r.before_joint is not None:
+            return [self.reading(r, intrusion) for _ in range(count)]
+        self.count += model.reads * count
+        torque = intrusion is not None and not model.exact_torque
+        shaken = torque and bool(self.torque_noise)
+        placed = bool(model.noise or model.taxel)
+        moved = placed and bool(self.noise)
+        width = 2 * shaken + (3 + 2 * len(r.contacts)) * moved
+        if model.keyed:
+            z = np.empty((count, width))
+            pose, first = self._key(r.joint, r.direction, count)
+            for i in range(count):
+                if i:
+                    self._restart(pose, first + i)
+                z[i] = self.rng.standard_normal(width)
+        else:
+            z = self.rng.standard_normal((count, width))
+        flags = [(r.blocked_ccw, r.blocked_cw)] * count
+        if torque:
+            read = np.maximum(np.asarray(intrusion, dtype=np.float64), 0.0)
+            if shaken:
+                read = read + self.torque_noise * z[:, :2]
+            got = np.broadcast_to(read >= model.torque_threshold, (count, 2)).tolist()
+            flags = [(bool(ccw), bool(cw)) for ccw, cw in got]
+        if not placed:
+            return [replace(r, blocked_ccw=ccw, blocked_cw=cw) for ccw, cw in flags]
+        joints, dirs = self._poses(r.joint, r.direction, z[:, 2 * shaken:], count)
+        perps = np.column_stack((-dirs[:, 1], dirs[:, 0]))
+        t = np.asarray(r.direction, float)
+        n = np.array((-t[1], t[0]))
+        columns = []
+        for j, c in enumerate(r.contacts):
+            rel = np.asarray(c.point, float) - r.joint
+            a, b = float(rel @ t), float(rel @ n)
+            if model.taxel:
+                a = self.along(min(a, self.length))
+            face = TIP if model.taxel and a >= self.length else c.face
+            points = joints + a * dirs + b * perps
+            if moved:
+                k = 2 * shaken + 3 + 2 * j
+                points = points + self.noise * z[:, k:k + 2]
+            else:
+                points = points + np.zeros(2)
+            along = float(min(a, self.length))
+            columns.append([Contact(p, face, along) for p in points])
+        rows = zip(*columns) if columns else [()] * count
+        return [Reading(joints[i], dirs[i], tuple(cs), blocked_cw=cw, blocked_ccw=ccw,
+                        event=r.event, trace=r.trace, before_direction=r.before_direction,
+                        angle=r.angle)
+                for i, (cs, (ccw, cw)) in enumerate(zip(rows, flags))]
+
+    def _poses(self, joint, direction, z, count) -> tuple[np.ndarray, np.ndarray]:
+        """(count, 2) reported joints and directions, as :meth:`pose` gives them one by
+        one from the draws ``z`` (count, >= 3): the angle's, then the joint's two."""
+        if not self.noise:
+            return (np.tile(np.asarray(joint, float), (count, 1)),
+                    np.tile(np.asarray(direction, float), (count, 1)))
+        base = math.atan2(direction[1], direction[0])
+        angles = base + (self.noise / self.length) * z[:, 0]
+        dirs = np.array([(math.cos(ang), math.sin(ang)) for ang in angles.tolist()])
+        return np.asarray(joint, float) + self.noise * z[:, 1:3], dirs

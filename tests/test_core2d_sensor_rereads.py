@@ -33,11 +33,18 @@ MODELS = {
 def _placed(model, degrees):
     """A probe inserted towards the pocket's floor corner at ``degrees`` (ccw from +x),
     or (None) onto the floor's middle lying on the wall's top corner: a tip contact and
-    a body contact."""
+    a body contact; ("body") the same, stopped 1 short of the floor: the body's contact
+    alone; ("free") on the workspace circle, touching nothing."""
     probe = Probe(ExactContact(POCKET), (np.zeros(2), 15.0), 1.0, sensor=model)
-    if degrees is None:
+    if degrees == "free":
+        probe.approach(np.array([0.0, -2.0]), np.array([0.0, -1.0]))
+        return probe
+    if degrees in (None, "body"):
         tip, t = np.array([0.0, -4.0]), np.array([-1.99, -4.0])
         probe.approach(tip - 0.5 * t / np.hypot(*t), t)
+        if degrees == "body":
+            probe.insert(float(np.hypot(*(probe.tip - tip))) - 1.0)
+            return probe
     else:
         t = np.deg2rad(degrees)
         probe.approach(np.array([1.9, -3.9]), np.array([np.cos(t), np.sin(t)]))
@@ -55,7 +62,7 @@ def _same(a, b):
 
 
 @pytest.mark.parametrize("name", list(MODELS))
-@pytest.mark.parametrize("degrees", [-60.0, -90.0, -135.0, None])
+@pytest.mark.parametrize("degrees", [-60.0, -90.0, -135.0, None, "body", "free"])
 def test_rereads_are_the_readings_of_as_many_senses(name, degrees):
     one, many = _placed(MODELS[name], degrees), _placed(MODELS[name], degrees)
     rays = many.stats.rays
@@ -72,11 +79,16 @@ def test_rereads_are_the_readings_of_as_many_senses(name, degrees):
     _same(one.sense(), many.sense())
 
 
-def test_the_corner_gives_a_body_contact_and_the_noise_moves_it():
-    """The test above compares readings with a tip and a body contact, which the noise moves."""
-    probe = _placed(MODELS["noise+taxel"], None)
-    got = probe.reread(3)
-    assert all([c.face for c in r.contacts] == ["tip", "right"] for r in got)
+def test_the_postures_read_what_the_comparison_needs():
+    """The test above reads a tip and a body contact, a body contact alone, no contact at
+    all, and both torque flags; the noise moves the body's contact between reads."""
+    corner = _placed(MODELS["noise+taxel"], None).sense()
+    assert [c.face for c in corner.contacts] == ["tip", "right"]
+    assert [c.face for c in _placed(None, "body").sense().contacts] == ["right"]
+    free = _placed(MODELS["all"], "free")
+    assert free.sense().contacts == () and free.reread(2)[1].contacts == ()
+    assert _placed(None, None).sense().blocked_ccw and not _placed(None, -90.0).sense().blocked_ccw
+    got = _placed(MODELS["noise+taxel"], None).reread(3)
     assert not np.array_equal(got[0].contacts[1].point, got[1].contacts[1].point)
 
 

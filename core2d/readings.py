@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Contact", "Reading", "TIP", "LEFT", "RIGHT"]
+__all__ = ["Contact", "Reading", "Rereads", "TIP", "LEFT", "RIGHT"]
 
 TIP, LEFT, RIGHT = "tip", "left", "right"
 
@@ -81,3 +81,34 @@ class Reading:
     @property
     def tip_contact(self):
         return self.contact(TIP)
+
+
+@dataclass(frozen=True, slots=True)
+class Rereads:
+    """What k more reads where the probe stands report (``Robot.reread``): the
+    joint position sensors, the tip's contact and the torque sensor, read by read.
+
+    joint, direction : (k, 2) float -- P and the unit t of each read.
+    tip : (k, 2) float -- the tip's contact of each read (NaN: none).
+    blocked : (k, 2) bool -- the torque sensor's (ccw, cw) flags of each read.
+
+    >>> r = Reading(np.zeros(2), np.array([0.0, -1.0]), (Contact(np.ones(2), TIP, 1.0),))
+    >>> Rereads.of([r, r]).tip.tolist(), Rereads.of([r]).blocked.tolist()
+    ([[1.0, 1.0], [1.0, 1.0]], [[False, False]])
+    """
+
+    joint: np.ndarray
+    direction: np.ndarray
+    tip: np.ndarray
+    blocked: np.ndarray
+
+    @classmethod
+    def of(cls, readings) -> Rereads:
+        """The record of a sequence of readings."""
+        none = (np.nan, np.nan)
+        tips = [none if (c := r.tip_contact) is None else c.point for r in readings]
+        return cls(np.array([r.joint for r in readings], float).reshape(-1, 2),
+                   np.array([r.direction for r in readings], float).reshape(-1, 2),
+                   np.array(tips, float).reshape(-1, 2),
+                   np.array([(r.blocked_ccw, r.blocked_cw) for r in readings],
+                            bool).reshape(-1, 2))

@@ -38,11 +38,11 @@ def _probe_from(probe: Robot, angle, reads: int = 1):
         return None
     if reads <= 1:
         return c.point, Posture(r.joint, r.direction)
-    got = [r, *probe.reread(reads - 1)]
-    got = [x for x in got if x.tip_contact is not None]
-    t = np.sum([x.direction for x in got], axis=0)
-    return (np.mean([x.tip_contact.point for x in got], axis=0),
-            Posture(np.mean([x.joint for x in got], axis=0), t / magnitude(t)))
+    got = probe.reread(reads - 1)
+    touched = ~np.isnan(got.tip[:, 0])
+    t = np.sum(np.vstack((r.direction, got.direction[touched])), axis=0)
+    return (np.mean(np.vstack((c.point, got.tip[touched])), axis=0),
+            Posture(np.mean(np.vstack((r.joint, got.joint[touched])), axis=0), t / magnitude(t)))
 
 
 def bootstrap(probe: Robot, count=12, far=None, max_depth=3):

@@ -168,9 +168,9 @@ def reread_torque(probe: Robot, reading: Reading) -> Reading:
     k = probe.resolution.torque_reads
     if k <= 1:
         return reading
-    reads = [reading, *probe.reread(k - 1)]
-    ccw = sum(x.blocked_ccw for x in reads) * 2 > k
-    cw = sum(x.blocked_cw for x in reads) * 2 > k
+    again = probe.reread(k - 1).blocked.sum(axis=0)
+    ccw = (reading.blocked_ccw + int(again[0])) * 2 > k
+    cw = (reading.blocked_cw + int(again[1])) * 2 > k
     return replace(reading, blocked_ccw=ccw, blocked_cw=cw)
 
 

@@ -20,7 +20,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from core2d.readings import Reading
+from core2d.readings import Reading, Rereads
 from core2d.resolution import Resolution
 from core2d.result import SenseStats
 
@@ -62,9 +62,10 @@ class Robot(Protocol):
         """Read the sensors again where the probe stands (no motion: the
         readings of a noisy sensor differ from one read to the next)."""
 
-    def reread(self, count: int) -> list[Reading]:
-        """``count`` more readings where the probe stands, as ``count`` calls of
-        :meth:`sense` would return them (no motion)."""
+    def reread(self, count: int) -> Rereads:
+        """``count`` more reads where the probe stands (no motion): what ``count``
+        calls of :meth:`sense` would report of the joint, the tip's contact and the
+        torque (:class:`~core2d.readings.Rereads`)."""
 
     def approach(self, point: np.ndarray, direction: np.ndarray) -> Reading:
         """Free transfer to the line through ``point`` along ``direction``."""

@@ -142,15 +142,12 @@ def reread_jump(probe: Robot, r):
     k = probe.resolution.contact_reads
     if k <= 1 or c.face != TIP or not resolves_half_eps(probe.resolution):
         return c.point, Posture(r.joint, r.direction)
-    same = probe.resolution.tip_zone
-    pts, joints, dirs = [c.point], [r.joint], [r.direction]
-    for x in probe.reread(k - 1):
-        tip = x.tip_contact
-        if tip is not None and np.hypot(*(tip.point - c.point)) <= same:
-            pts.append(tip.point)
-            joints.append(x.joint)
-            dirs.append(x.direction)
-    d = np.sum(dirs, axis=0)
+    got = probe.reread(k - 1)
+    with np.errstate(invalid="ignore"):  # a read without a tip contact: NaN, left out
+        same = np.hypot(*(got.tip - c.point).T) <= probe.resolution.tip_zone
+    pts = np.vstack((c.point, got.tip[same]))
+    joints = np.vstack((r.joint, got.joint[same]))
+    d = np.sum(np.vstack((r.direction, got.direction[same])), axis=0)
     return np.mean(pts, axis=0), Posture(np.mean(joints, axis=0), d / np.hypot(*d))
 
 

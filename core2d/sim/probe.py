@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from core2d.planar import angle_of, magnitude, unit
-from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading
+from core2d.readings import LEFT, RIGHT, TIP, Contact, Reading, Rereads
 from core2d.resolution import Resolution
 from core2d.result import SenseStats
 from core2d.sim.compliance import compliant_trace
@@ -176,19 +176,21 @@ class Probe:
                           blocked_cw=d1 <= reach, blocked_ccw=d0 <= reach, event=event, **extra)
         return reading, (reach - d0, reach - d1)
 
-    def reread(self, count: int) -> list[Reading]:
-        """``count`` more readings where the probe stands (no motion), as ``count``
-        calls of :meth:`sense` return them: the same draws in the same order, the same
-        readings to the bit. Standing still, the true contacts and the torque check's
+    def reread(self, count: int) -> Rereads:
+        """``count`` more reads where the probe stands (no motion): what ``count`` calls
+        of :meth:`sense` report of the joint, the tip's contact and the torque
+        (:class:`~core2d.readings.Rereads`), the same draws in the same order, the same
+        to the bit. Standing still, the true contacts and the torque check's
         intrusions do not change from one read to the next, only the sensors' draws:
         the rays are cast once (``stats.rays`` counts them once) and the draws are
-        applied together (:meth:`core2d.sim.sensor.Sensor.readings`). The planner's
-        re-reads at a jump's P_2nd (25 of them at sigma 0.1 eps) made 58 % of the
-        CPU time of a noisy run one by one (``comb`` z1 of 8, sigma 0.1 eps, keyed
-        seed 1001)."""
+        applied together, as arrays (:meth:`core2d.sim.sensor.Sensor.readings`). The
+        planner's re-reads at a jump's P_2nd and at a pass's new contact (25 of them
+        at sigma 0.1 eps) made 58 % of the CPU time of a noisy run one by one (``comb``
+        z1 of 8, sigma 0.1 eps, keyed seed 1001; docs/notes/speed.md).
+        """
         reading, intrusion = self._true()
         if self._ideal:
-            return [reading] * count
+            return Rereads.of([reading] * count)
         return self.sensor.readings(reading, intrusion, count)
 
     # --------------------------------------------------------------- motions

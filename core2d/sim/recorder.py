@@ -81,7 +81,8 @@ class Recorder:
         return self.robot.sense()
 
     def reread(self, count):
-        """Read the sensors ``count`` more times (no motion: not logged)."""
+        """Read the sensors ``count`` more times (no motion: not logged;
+        :class:`~core2d.readings.Rereads`)."""
         return self.robot.reread(count)
 
     # ------------------------------------------------------------- motions

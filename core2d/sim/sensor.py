@@ -59,7 +59,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from core2d.readings import TIP, Contact, Reading
+from core2d.readings import TIP, Contact, Reading, Rereads
 
 __all__ = ["SensorModel", "Sensor"]
 
@@ -109,7 +109,7 @@ class SensorModel:
     def read_noise(self) -> float:
         """noise / sqrt(reads): the standard deviation of a reading point's means.
 
-        >>> SensorModel(noise=0.3, reads=9).read_noise
+        >>> round(SensorModel(noise=0.3, reads=9).read_noise, 12)
         0.1
         """
         return self.noise / math.sqrt(self.reads)
@@ -252,34 +252,32 @@ class Sensor:
                                                                    r.before_direction)
         return replace(r, joint=seen[0], direction=seen[1], contacts=contacts, **kw)
 
-    def readings(self, r: Reading, intrusion=None, count: int = 1) -> list[Reading]:
-        """``count`` readings of the one true reading ``r`` (a probe standing still):
-        what ``count`` calls of :meth:`reading` return, the same draws in the same
-        order, made in one call of the generator per reading point (keyed) or per
+    def readings(self, r: Reading, intrusion=None, count: int = 1) -> Rereads:
+        """``count`` reads of the one true reading ``r`` (a probe standing still) as
+        :class:`~core2d.readings.Rereads`: what ``count`` calls of :meth:`reading`
+        report of the joint, the tip's contact and the torque, the same draws in the
+        same order, made in one call of the generator per reading point (keyed) or per
         ``count`` (one stream) instead of one per contact and axis.
 
         Every value is computed as :meth:`reading` computes it (``s z`` for a draw ``z``
         of scale ``s``, as numpy's ``normal(0, s)`` makes it, the same sums in the same
-        order, ``math`` for the angle), so each reading is the same to the bit
-        (``tests/test_core2d_sensor_rereads.py``).
-        A reading with a trace or a posture before it takes :meth:`reading` one by one.
+        order, ``math`` for the angle), so each read is the same to the bit
+        (``tests/test_core2d_sensor_rereads.py``); the body's contacts are drawn (the
+        stream goes on as after ``count`` readings) and not placed. A reading with a
+        trace or a posture before it takes :meth:`reading` one by one.
 
         Examples
         --------
-        >>> import numpy as np
         >>> from core2d.readings import Contact
         >>> r = Reading(np.zeros(2), np.array([0.0, 1.0]), (Contact(np.array([0.0, 5.0]), TIP, 5.0),))
         >>> one, two = Sensor(SensorModel(noise=0.1, seed=3), 5.0), Sensor(SensorModel(noise=0.1, seed=3), 5.0)
-        >>> a = [one.reading(r) for _ in range(3)]
-        >>> b = two.readings(r, None, 3)
-        >>> all(np.array_equal(x.contacts[0].point, y.contacts[0].point) for x, y in zip(a, b))
+        >>> a = [one.reading(r).tip_contact.point for _ in range(3)]
+        >>> bool(np.array_equal(a, two.readings(r, None, 3).tip))
         True
         """
         model = self.model
-        if model.ideal or count < 1:
-            return [r] * max(count, 0)
-        if len(r.trace) or r.before_joint is not None:
-            return [self.reading(r, intrusion) for _ in range(count)]
+        if model.ideal or count < 1 or len(r.trace) or r.before_joint is not None:
+            return Rereads.of([self.reading(r, intrusion) for _ in range(max(count, 0))])
         self.count += model.reads * count
         torque = intrusion is not None and not model.exact_torque
         shaken = torque and bool(self.torque_noise)
@@ -295,39 +293,38 @@ class Sensor:
                 z[i] = self.rng.standard_normal(width)
         else:
             z = self.rng.standard_normal((count, width))
-        flags = [(r.blocked_ccw, r.blocked_cw)] * count
+        blocked = np.tile((r.blocked_ccw, r.blocked_cw), (count, 1))
         if torque:
             read = np.maximum(np.asarray(intrusion, dtype=np.float64), 0.0)
             if shaken:
                 read = read + self.torque_noise * z[:, :2]
-            got = np.broadcast_to(read >= model.torque_threshold, (count, 2)).tolist()
-            flags = [(bool(ccw), bool(cw)) for ccw, cw in got]
+            blocked = np.broadcast_to(read >= model.torque_threshold, (count, 2)).copy()
+        tip = r.tip_contact
         if not placed:
-            return [replace(r, blocked_ccw=ccw, blocked_cw=cw) for ccw, cw in flags]
+            joints = np.tile(np.asarray(r.joint, float), (count, 1))
+            dirs = np.tile(np.asarray(r.direction, float), (count, 1))
+            tips = np.tile((np.nan, np.nan) if tip is None else tip.point, (count, 1)).astype(float)
+            return Rereads(joints, dirs, tips, blocked)
         joints, dirs = self._poses(r.joint, r.direction, z[:, 2 * shaken:], count)
-        perps = np.column_stack((-dirs[:, 1], dirs[:, 0]))
+        tips = np.full((count, 2), np.nan)
         t = np.asarray(r.direction, float)
         n = np.array((-t[1], t[0]))
-        columns = []
-        for j, c in enumerate(r.contacts):
+        for j, c in enumerate(r.contacts):  # the first whose taxel is the tip's
             rel = np.asarray(c.point, float) - r.joint
             a, b = float(rel @ t), float(rel @ n)
             if model.taxel:
                 a = self.along(min(a, self.length))
-            face = TIP if model.taxel and a >= self.length else c.face
-            points = joints + a * dirs + b * perps
+            if (TIP if model.taxel and a >= self.length else c.face) != TIP:
+                continue
+            perps = np.column_stack((-dirs[:, 1], dirs[:, 0]))
+            tips = joints + a * dirs + b * perps
             if moved:
                 k = 2 * shaken + 3 + 2 * j
-                points = points + self.noise * z[:, k:k + 2]
+                tips = tips + self.noise * z[:, k:k + 2]
             else:
-                points = points + np.zeros(2)
-            along = float(min(a, self.length))
-            columns.append([Contact(p, face, along) for p in points])
-        rows = zip(*columns) if columns else [()] * count
-        return [Reading(joints[i], dirs[i], tuple(cs), blocked_cw=cw, blocked_ccw=ccw,
-                        event=r.event, trace=r.trace, before_direction=r.before_direction,
-                        angle=r.angle)
-                for i, (cs, (ccw, cw)) in enumerate(zip(rows, flags))]
+                tips = tips + np.zeros(2)
+            break
+        return Rereads(joints, dirs, tips, blocked)
 
     def _poses(self, joint, direction, z, count) -> tuple[np.ndarray, np.ndarray]:
         """(count, 2) reported joints and directions, as :meth:`pose` gives them one by

@@ -321,7 +321,7 @@ class Sensor:
             if moved:
                 k = 2 * shaken + 3 + 2 * j
                 tips = tips + self.noise * z[:, k:k + 2]
-            else:
+            else:  # reading() adds its zero jitter too (-0.0 + 0.0 is 0.0)
                 tips = tips + np.zeros(2)
             break
         return Rereads(joints, dirs, tips, blocked)

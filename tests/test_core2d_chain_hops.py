@@ -2,11 +2,10 @@
 (:meth:`core2d.planner.known.KnownContour.hops`, :func:`core2d.planner.mouths.traced_gaps`).
 
 A hop of the chain is the record's own gap: from one piece's last point to the point where
-the next piece passes it (not that piece's segment start), and each piece's nearest
-continuation is followed first, so a chain does not hop over a piece that lies between. A
-hop of eps or more makes a fine sensor's ``traced_gaps`` refuse the chain (it may be a
-mouth), so a hop measured too long left lids over traced slots unknown, each after its
-revisit passes. Maps of straight pieces; the distances here are computed by hand.
+the next piece passes it, not to that piece's first point. A hop of eps or more makes a fine
+sensor's ``traced_gaps`` refuse the chain (it may be a mouth), so a hop measured to a piece
+that begins back along the wall left lids over traced slots unknown, each after its revisit
+passes. Maps of straight pieces; the distances here are computed by hand.
 """
 from __future__ import annotations
 
@@ -27,10 +26,6 @@ def _map(*pieces):
     return known
 
 
-def _width(hop) -> float:
-    return float(np.hypot(*(hop[1] - hop[0])))
-
-
 def test_a_hop_ends_where_the_next_piece_passes_the_last_point():
     # the second piece starts 1 eps back along the wall and passes the first's end 0.1 off
     known = _map([[0.0, 0.0], [4.0, 0.0]], [[3.0, 0.1], [8.0, 0.1]])
@@ -39,19 +34,6 @@ def test_a_hop_ends_where_the_next_piece_passes_the_last_point():
     assert len(hops) == 1
     np.testing.assert_allclose(hops[0], [[4.0, 0.0], [4.0, 0.1]], atol=1e-12)
     assert traced_gaps(known, a, b, FINE.tip_zone, FINE) is not None  # a gap of 0.1 eps
-
-
-def test_the_nearest_continuation_is_followed_first():
-    # a wall recorded as short chords; the chord after next also passes each chord's end
-    # (1 eps on, within the W2 distance), and was added later, so it is tried first unless
-    # the nearest goes first
-    chords = [[[x, 0.0], [x + 1.0, 0.0]] for x in range(8)]
-    known = _map(*chords)
-    a, b = np.array([0.2, 0.0]), np.array([7.8, 0.0])
-    assert any(len(known.successors(i)) > 1 for i in range(7))  # the chords skip ahead
-    hops = known.hops(a, b, FINE.tip_zone)
-    assert hops and max(_width(h) for h in hops) < 1e-12
-    assert traced_gaps(known, a, b, FINE.tip_zone, FINE) == []
 
 
 def test_a_real_gap_of_eps_still_refuses_the_chain():

@@ -262,10 +262,9 @@ class KnownContour:
     def hops(self, a, b, tol: float) -> list[np.ndarray] | None:
         """The gaps that the chain of :meth:`covers` from A to B hops between two
         pieces, as (2, 2) float segments from the last point of one piece to the
-        point where the next passes it, in order; None when no chain leads there.
-        Each piece's nearest continuation is followed first, so the chain does not
-        hop over a piece that lies between: the hops are the record's own gaps."""
-        found = self._chain(a, b, tol, (), tight=True)
+        point where the next passes it (the gap itself, not the distance to that
+        piece's first point), in order; None when no chain leads there."""
+        found = self._chain(a, b, tol, ())
         return None if found is None else found[1]
 
     def chain(self, a, b, tol: float, exclude=()):
@@ -275,9 +274,8 @@ class KnownContour:
         found = self._chain(a, b, tol, exclude)
         return None if found is None else found[0]
 
-    def _chain(self, a, b, tol: float, exclude, tight: bool = False):
-        """:meth:`chain` and :meth:`hops` together, or None. ``tight``: each piece's
-        nearest continuation is followed first."""
+    def _chain(self, a, b, tol: float, exclude):
+        """:meth:`chain` and :meth:`hops` together, or None."""
         if len(self._a) == 0:
             return None
         pa, pb = np.asarray(a, float), np.asarray(b, float)
@@ -299,19 +297,8 @@ class KnownContour:
             reached[i], came[i] = pos, prev
             if best_b[i] >= pos:
                 return self._walk(i, best_b[i], reached, came)
-            todo.extend((j, float(first[j] + k), i) for j, k in (
-                self._nearest_last(i) if tight else self._next[i]))
+            todo.extend((j, float(first[j] + k), i) for j, k in self._next[i])
         return None
-
-    def _nearest_last(self, i) -> list:
-        """``self._next[i]`` ordered by the distance from piece ``i``'s last point to
-        where each continuation passes it, the nearest last (popped first)."""
-        nxt = self._next[i]
-        if len(nxt) < 2:
-            return nxt
-        g = np.array([self._first[j] + k for j, k in nxt])
-        d = point_segment_distances(self._ends[i], self._a[g], self._b[g])
-        return [nxt[m] for m in np.argsort(-d, kind="stable")]
 
     def _walk(self, last, end_pos, reached, came) -> tuple[np.ndarray, list]:
         """Points of the chain that ends in piece ``last`` at ``end_pos``:
@@ -325,7 +312,8 @@ class KnownContour:
             if i is not None:
                 stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
         parts = parts[::-1]
-        hops = [np.stack([p[-1], _nearest_on(q[0], q[1], p[-1])]) for p, q in zip(parts, parts[1:])]
+        hops = [np.stack([p[-1], _nearest_on(q[0], q[1], p[-1])])  # where q passes p's end
+                for p, q in zip(parts, parts[1:])]
         return np.concatenate(parts), hops
 
     def _span(self, i, start, stop) -> np.ndarray:

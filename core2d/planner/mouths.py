@@ -117,8 +117,12 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     chord (below eps only, for a sensor whose readings do not resolve eps/2:
     :func:`_chord_limit`). Reported as traced, a slot 0.89 eps wide and 84 eps
     deep whose mouth the chain hopped was covered by nothing (``comb`` scene z7
-    of 8, keyed sensor seed 7 at sigma 0.1 eps: 0.835 -> 0.914). Perfect
-    sensing keeps the paper's output as it was.
+    of 8, keyed sensor seed 7 at sigma 0.1 eps: 0.835 -> 0.914). A hop is the
+    record's own gap (:meth:`~core2d.planner.known.KnownContour.hops`: to where the
+    next piece passes); measured to that piece's first point, a piece that began
+    back along the wall read as a hop of eps or more over a gap of a tenth of that,
+    and a lid over a slot traced that way ended unknown after its revisit passes.
+    Perfect sensing keeps the paper's output as it was.
 
     Returns
     -------

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import numpy as np
 
-import core2d.planner.known as known_mod
 from core2d.planner.known import KnownContour
 from core2d.planner.mouths import traced_gaps
 from core2d.resolution import Resolution
@@ -41,10 +40,3 @@ def test_a_real_gap_of_eps_still_refuses_the_chain():
     a, b = np.array([0.0, 0.2]), np.array([10.0, 0.2])
     assert known.covers(a, b, FINE.tip_zone)
     assert traced_gaps(known, a, b, FINE.tip_zone, FINE) is None
-
-
-def test_nearest_on_clamps_to_the_segment():
-    a, b = np.array([0.0, 0.0]), np.array([2.0, 0.0])
-    np.testing.assert_allclose(known_mod._nearest_on(a, b, np.array([1.0, 3.0])), [1.0, 0.0])
-    np.testing.assert_allclose(known_mod._nearest_on(a, b, np.array([-1.0, 1.0])), [0.0, 0.0])
-    np.testing.assert_allclose(known_mod._nearest_on(a, a, np.array([5.0, 1.0])), [0.0, 0.0])

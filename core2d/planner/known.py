@@ -312,8 +312,8 @@ class KnownContour:
             if i is not None:
                 stop = self._first[i] + len(self.pieces[i]) - 1.0  # that piece's last point
         parts = parts[::-1]
-        hops = [np.stack([p[-1], _nearest_on(q[0], q[1], p[-1])])  # where q passes p's end
-                for p, q in zip(parts, parts[1:])]
+        hops = [np.stack([p[-1], q[0] + segment_params(p[-1], q[:1], q[1:2])[0] * (q[1] - q[0])])
+                for p, q in zip(parts, parts[1:])]  # to where q passes p's end
         return np.concatenate(parts), hops
 
     def _span(self, i, start, stop) -> np.ndarray:
@@ -356,13 +356,6 @@ class KnownContour:
         pts = a + (s / n)[:, None] * ab
         tangent = np.broadcast_to(-ab / n, pts.shape)  # B -> A: V_i on its right
         return FreeLines(pts, tangent, s / n, seg_a, seg_b, min_gap)
-
-
-def _nearest_on(a, b, p) -> np.ndarray:
-    """(2,) float: the point of segment ``a`` -> ``b`` nearest ``p``."""
-    d = b - a
-    n2 = float(d @ d)
-    return a.copy() if n2 == 0.0 else a + min(max(float((p - a) @ d) / n2, 0.0), 1.0) * d
 
 
 def _end_direction(pl, span) -> np.ndarray:

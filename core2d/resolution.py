@@ -150,6 +150,17 @@ class Resolution:
         return self.fan_spacing + self.jitter
 
     @property
+    def face_span(self) -> float:
+        """How much of the trace a face's line is read over where the side of
+        a point matters (:func:`core2d.planner.hops.across_wall`): :attr:`hop`
+        by its two ends with perfect sensing (two exact contacts give the
+        line), else twice :attr:`tip_zone` (the slide's length) by least
+        squares. Two readings :attr:`hop` apart tilt the line by up to
+        atan(jitter / hop) (35 degrees at sigma 0.3 eps, taxels 0.25 eps);
+        a fit through every reading of the longer stretch averages them."""
+        return self.hop if self.jitter == 0 else 2.0 * self.tip_zone
+
+    @property
     def w2_dist(self) -> float:
         """eps (+ :attr:`jitter`): Dist(A_i, B_i) below which an area is W2
         (§3.1). Its ends are readings: a gap narrower than eps may read up

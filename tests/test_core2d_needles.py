@@ -202,6 +202,45 @@ def test_a_p_fin_within_the_jitter_is_read_by_the_face_it_was_recorded_on(fin, a
         np.testing.assert_allclose(faces[0], [1.0, 0.0], atol=1e-12)
 
 
+def test_a_noisy_face_is_read_over_the_slide_by_least_squares():
+    """Two readings ``hop`` apart tilt the face's line by their scatter: a P_fin 0.15 behind
+    a face along y = 0 reads 0.1 in front of the line through the last two (a slit's far
+    wall: not across), and behind the least-squares line over a longer ``span`` (across,
+    by the map's faces). With ``span`` no longer than ``hop`` the two-point line is kept,
+    as a perfect sensor reads it."""
+    from core2d.planner.hops import face_line
+
+    face = [np.array([[0.0, 0.0], [0.25, 0.06], [0.5, -0.06], [0.75, 0.06], [1.0, -0.06],
+                      [1.25, 0.06], [1.5, -0.06], [1.75, 0.08], [2.0, -0.08]])]
+    last, now, fin = face[0][-1], np.array([2.2, -0.05]), np.array([2.3, -0.15])
+    pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
+    args = (face + [fin[None]], last, now, fin, pose, 1.0, 0.25, 0.3, 1.0, lambda f: True)
+    assert not across_wall(*args)  # read off the last two: P_fin on the free side
+    assert not across_wall(*args, 0.25)  # span = hop: the same line
+    assert across_wall(*args, 2.0)
+    origin, u = face_line(face[0], last, 7, 2.0)
+    assert abs(u[1] / u[0]) < 0.03 and abs(origin[1]) < 0.03
+    np.testing.assert_array_equal(face_line(face[0], last, 7, 0.25)[1], last - face[0][7])
+
+
+def test_the_face_read_over_the_slide_keeps_a_needle_thinner_than_the_jitter(monkeypatch):
+    """``numerics`` seed 0, keyed sensor seed 3000, sigma 0.3 eps, taxels 0.25 eps: the trace
+    out along the needle's upper face meets a P_fin read on its lower face where the needle
+    is 0.29 eps thick. The face's line through two readings ``hop`` (0.69 eps) apart was 16
+    degrees off and put P_fin 0.155 eps on its free side (a slit's far wall): the needle's
+    outer 19 eps were lost, 0.893. Read by least squares over the slide (2 x ``tip_zone``)
+    P_fin lies 0.14 eps behind the face and the trace slides on round the needle's end."""
+    from core2d.resolution import Resolution
+
+    loops = outline("numerics", np.random.default_rng(0), 1.0)
+    res, m = _sense(loops, sensor=_coarse(3000, True))
+    assert not res.stats.budget_hit
+    assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
+    assert m["precision_sensor"] >= 0.98
+    monkeypatch.setattr(Resolution, "face_span", property(lambda r: r.hop))  # two readings
+    assert _sense(loops, sensor=_coarse(3000, True))[1]["coverage_sensor"] < 0.98
+
+
 def test_a_p_fin_on_the_face_slid_along_is_reached():
     """Case 1 as the paper has it: P_fin on the face's line (or its free side) is reached."""
     pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))

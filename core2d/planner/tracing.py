@@ -247,7 +247,7 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
             now = r.tip_contact
             if not back and last is not None and now is not None and walls < _MAX_WALLS \
                     and across_wall(pieces, last, now.point, p_fin, pose_fin, sign, res.hop,
-                                    res.near, 2 * res.tip_zone, against):
+                                    res.near, 2 * res.tip_zone, against, res.face_span):
                 held = (list(pieces), pose1, event)
                 pieces[-1] = pieces[-1][:-1]  # P_fin lies across a wall, not slid to
                 walls += 1
@@ -327,7 +327,8 @@ def _body_across(res, pieces, p1, now, p_fin, pose_fin, sign, against) -> bool:
     return (res.jitter > 0 and against is not None and now is not None
             and float(np.hypot(*(p1 - p_fin))) < res.w2_dist
             and across_wall(pieces + [np.asarray(p_fin)[None]], p1, now.point, p_fin, pose_fin,
-                            sign, res.hop, res.near, 2 * res.tip_zone, against))
+                            sign, res.hop, res.near, 2 * res.tip_zone, against,
+                            res.face_span))
 
 
 def _before_fin(pieces):

@@ -15,7 +15,7 @@ import numpy as np
 
 from core2d.planner.areas import register
 
-__all__ = ["split_hops", "hop_to", "across_wall", "HOP_TURN"]
+__all__ = ["split_hops", "hop_to", "across_wall", "face_line", "HOP_TURN"]
 
 #: a W1 step longer than eps / 4 turning left (concave) by more than this hides contour
 HOP_TURN = np.pi / 4
@@ -77,8 +77,8 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     wide at its base and 39 eps long, its outer 33 eps on both faces lost,
     0.882 of the reachable contour covered noiselessly). Read from what the
     probe sensed: the tip still touches the face slid along where the
-    controller stopped (on its line over the last ``hop`` of contour, within
-    ``near``: the step that passed P_fin slid along it), P_fin lies behind
+    controller stopped (on its line over the last ``hop`` of contour, or
+    ``span``, within ``near``: the step that passed P_fin slid along it), P_fin lies behind
     that face (on its material side by more than ``near``), and the probe
     that touched P_fin (``pose_fin``: its joint to P_fin is free space) did
     not come through a gap beside the tip -- its segment from the joint to
@@ -122,6 +122,9 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
         read over, the contact noise, how far from the tip a gap can open.
     against : callable (2,) float -> bool, optional -- was P_fin recorded on a
         face running against the one given (None: no map, depth only).
+    span : float, optional -- the stretch the face's line is read over
+        (:attr:`~core2d.resolution.Resolution.face_span`, :func:`face_line`;
+        None: ``hop``, the line through its two ends).
 
     Examples
     --------

@@ -241,6 +241,30 @@ def test_the_face_read_over_the_slide_keeps_a_needle_thinner_than_the_jitter(mon
     assert _sense(loops, sensor=_coarse(3000, True))[1]["coverage_sensor"] < 0.98
 
 
+@pytest.mark.parametrize("seed", [2, 1002])
+def test_a_pass_that_touches_a_needle_from_behind_its_record_is_new(seed, monkeypatch):
+    """``numerics`` seed 2 at sigma 0.1 eps (16 reads; jitter 0.106 eps, ``near`` 0.206 eps):
+    the needle's outer 10 eps are thinner than ``near``. Its lower face is traced out to
+    x = 67; the area laid along the upper face from there (a body stop, Case 2-2) gets its
+    Theorem 1 pass down onto the upper face, and that contact lies within ``near`` of the
+    lower face's record: "touched recorded contour", deferred, and the lid closed as lying
+    on it -- the needle's tip never touched (0.970 - 0.9715). The rod came down on the
+    lower face's material side: its point an eps back from the contact lies 0.86 - 0.98 eps
+    behind that face's line (:func:`core2d.planner.thin_walls.touched_from_behind`), so
+    the contact is the far face, and the area is searched from it."""
+    import core2d.planner.run as run
+
+    loops = outline("numerics", np.random.default_rng(2), 1.0)
+    sensor = lambda: SensorModel.of_eps(1.0, 0.1, 0.0, seed,  # noqa: E731
+                                        reads=repeated_reads(1.0, 0.1, 0.0))
+    res, m = _sense(loops, sensor=sensor())
+    assert not res.stats.budget_hit
+    assert m["coverage_sensor"] >= 0.99, f"coverage {m['coverage_sensor']:.4f}"
+    assert m["precision_sensor"] >= 0.98
+    monkeypatch.setattr(run, "touched_from_behind", lambda *a: False)
+    assert _sense(loops, sensor=sensor())[1]["coverage_sensor"] < 0.98
+
+
 def test_a_p_fin_on_the_face_slid_along_is_reached():
     """Case 1 as the paper has it: P_fin on the face's line (or its free side) is reached."""
     pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))

@@ -4,7 +4,8 @@ A wall 0.7 eps thick beside a slit 2.67 eps wide (the outer wall of
 ``trimesh_octagonal_pocket`` z0 / z7, eps 1 here, exact backend): its outer face traced,
 the lids laid along its slit side used to be closed as contour recorded from B to A.
 ``far_face``: a point recorded on a face running against a given one (a needle's two faces,
-read by their directions, not by a depth the sensor cannot resolve).
+read by their directions, not by a depth the sensor cannot resolve). ``touched_from_behind``:
+a contact whose rod lies on the material side of the record it reads on.
 """
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import pytest
 
 from core2d import SensorModel, sense_slice
 from core2d.planner.known import KnownContour
-from core2d.planner.thin_walls import behind_recorded, far_face
+from core2d.planner.thin_walls import behind_recorded, far_face, touched_from_behind
 from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
 from slicer.contact.exact import ExactContact
@@ -114,3 +115,15 @@ def test_far_face_needs_a_readable_piece_each_of_which_runs_against():
     short_too = _wall()
     short_too.add([[3.1, 0.3], [3.5, 0.3]])  # a chord under the jitter beside it: skipped
     assert far_face(short_too, COARSE, [3.0, 0.1], face, COARSE.tip_zone)
+
+
+@pytest.mark.parametrize("point, joint, res, behind", [
+    ([3.0, -0.1], [3.0, -40.0], FINE, True),  # the rod up through the material: the far face
+    ([3.0, -0.1], [40.0, -30.0], FINE, True),  # slanting: an eps back, 0.73 below the line
+    ([3.0, -0.1], [40.0, -10.0], FINE, False),  # flatter: 0.36 below, within the jitter 0.42
+    ([3.0, 0.1], [3.0, 40.0], FINE, False),  # from the free side: a reading of the face
+    ([6.3, -0.1], [6.3, -40.0], FINE, False),  # past the piece's end: round a corner, maybe
+    ([3.0, -0.1], [3.0, -40.0], Resolution.of(1.0), False),  # perfect sensing: as it was
+])
+def test_a_contact_touched_from_behind_the_record_is_another_surface(point, joint, res, behind):
+    assert touched_from_behind(_wall(), res, point, joint) is behind

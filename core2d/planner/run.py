@@ -58,6 +58,7 @@ from core2d.planner.other_side import second_side
 from core2d.planner.regions import Posture
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
 from core2d.planner.robot import PlannerCounters, Robot, final_stats
+from core2d.planner.thin_walls import touched_from_behind
 from core2d.planner.tracing import (attach_pivot_G, plan_sides, reread_pass, split_contact,
                                     trace_side)
 from core2d.planner.w3_checks import closes_loop
@@ -222,9 +223,11 @@ class Exploration:
         if self.flow.map and beyond_ends(self.res, area.a, area.b, c):
             # a noisy sensor's grazing pass past an end (core2d.planner.grazing)
             return self.defer(area, "Theorem 1 pass met the lid's line beyond its ends")
-        if self.flow.map and self.known.distance(c) <= self.res.near:
+        if self.flow.map and self.known.distance(c) <= self.res.near and not \
+                touched_from_behind(self.known, self.res, c, pose_c.joint):
             # contour the robot has recorded already (Ext, or Int traced through
-            # other areas): nothing new to start the search from
+            # other areas): nothing new to start the search from -- unless the rod
+            # lies behind that record (core2d.planner.thin_walls: a thin wall's far face)
             return self.defer(area, "Theorem 1 pass touched recorded contour")
         joint_i = reading.joint.copy()
         probe.note_phase("bisection", area.index)

@@ -156,7 +156,7 @@ class Resolution:
         by its two ends with perfect sensing (two exact contacts give the
         line), else twice :attr:`tip_zone` (the slide's length) by least
         squares. Two readings :attr:`hop` apart tilt the line by up to
-        atan(jitter / hop) (35 degrees at sigma 0.3 eps, taxels 0.25 eps);
+        atan(jitter / hop) (33 degrees at sigma 0.3 eps, taxels 0.25 eps, 16 reads);
         a fit through every reading of the longer stretch averages them."""
         return self.hop if self.jitter == 0 else 2.0 * self.tip_zone
 

@@ -244,7 +244,7 @@ def test_the_face_read_over_the_slide_keeps_a_needle_thinner_than_the_jitter(mon
 @pytest.mark.parametrize("seed", [2, 1002])
 def test_a_pass_that_touches_a_needle_from_behind_its_record_is_new(seed, monkeypatch):
     """``numerics`` seed 2 at sigma 0.1 eps (16 reads; jitter 0.106 eps, ``near`` 0.206 eps):
-    the needle's outer 10 eps are thinner than ``near``. Its lower face is traced out to
+    the needle's outer 14 eps are thinner than ``near``. Its lower face is traced out to
     x = 67; the area laid along the upper face from there (a body stop, Case 2-2) gets its
     Theorem 1 pass down onto the upper face, and that contact lies within ``near`` of the
     lower face's record: "touched recorded contour", deferred, and the lid closed as lying

@@ -115,24 +115,7 @@ def behind_recorded(known: KnownContour, res: Resolution, point, radius: float) 
     >>> behind_recorded(k, res, [3.0, -0.3], res.near)  # within the jitter: a reading of it
     False
     """
-    if res.jitter == 0:
-        return False
-    p = np.asarray(point, dtype=np.float64)
-    hits = known.passing(p, radius)
-    if not hits:
-        return False
-    window = WINDOW * res.eps
-    for j, _ in hits:
-        line = _local_chord(known.pieces[j], p, window)
-        if line is None or line[2] < res.eps:
-            return False
-        run, u, length = line
-        if not 0.0 <= float((p - run[0]) @ u) <= length:
-            return False  # past the chord's ends
-        depth = float((run.mean(axis=0) - p) @ np.array([-u[1], u[0]]))
-        if depth <= res.jitter:
-            return False
-    return True
+    return _behind_every(known, res, point, point, radius)
 
 
 def touched_from_behind(known: KnownContour, res: Resolution, point, joint) -> bool:
@@ -151,21 +134,29 @@ def touched_from_behind(known: KnownContour, res: Resolution, point, joint) -> b
     >>> touched_from_behind(k, res, [3.0, -0.05], [3.0, -40.0])  # from below: the face
     False
     """
+    p = np.asarray(point, dtype=np.float64)
+    back = np.asarray(joint, dtype=np.float64) - p
+    return _behind_every(known, res, p, p + back / np.hypot(*back) * res.eps, res.near)
+
+
+def _behind_every(known: KnownContour, res: Resolution, at, point, radius: float) -> bool:
+    """With a noisy sensor: is ``point`` (2,) deeper than the jitter on the material side of
+    the local line at ``at`` (2,) of every recorded piece within ``radius`` of ``at`` (at
+    least one; each line at least eps long, ``at`` projecting inside it)?"""
     if res.jitter == 0:
         return False
-    p = np.asarray(point, dtype=np.float64)
-    hits = known.passing(p, res.near)
+    at = np.asarray(at, dtype=np.float64)
+    hits = known.passing(at, radius)
     if not hits:
         return False
-    back = np.asarray(joint, dtype=np.float64) - p
-    rod = p + back / np.hypot(*back) * res.eps
     for j, _ in hits:
-        line = _local_chord(known.pieces[j], p, WINDOW * res.eps)
+        line = _local_chord(known.pieces[j], at, WINDOW * res.eps)
         if line is None or line[2] < res.eps:
             return False
         run, u, length = line
-        if not 0.0 <= float((p - run[0]) @ u) <= length:
+        if not 0.0 <= float((at - run[0]) @ u) <= length:
             return False  # past the chord's ends
-        if float((run.mean(axis=0) - rod) @ np.array([-u[1], u[0]])) <= res.jitter:
+        depth = float((run.mean(axis=0) - point) @ np.array([-u[1], u[0]]))
+        if depth <= res.jitter:
             return False
     return True

@@ -131,7 +131,8 @@ def test_a_needle_thinner_than_the_sensors_jitter_is_told_by_the_map(seed, keyed
     assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
     assert m["precision_sensor"] >= 0.98
     assert slid and len(slid) == len(set(slid)), slid
-    monkeypatch.setattr(tracing, "far_face", lambda *a, **k: False)  # the map's reading off
+    monkeypatch.setattr(tracing, "far_face_means",
+                        lambda *a, **k: np.zeros((0, 2)))  # the map's reading off
     assert _sense(loops, sensor=_coarse(seed, keyed))[1]["coverage_sensor"] < 0.98
 
 
@@ -187,16 +188,25 @@ def test_across_wall_reads_the_probe_that_touched_p_fin(joint, now, wall):
     assert across_wall(_FACE, _LAST, np.asarray(now), _FIN, pose, 1.0, 0.25, 0.1, 1.0) is wall
 
 
-@pytest.mark.parametrize("fin, against, wall", [
-    ((2.1, -0.05), True, True),  # within near of the face, recorded on a face running against
-    ((2.1, -0.05), False, False),  # the same reading without the map's: the face itself
-    ((2.1, 0.05), True, False),  # on the free side: a slit's far wall, not a wall's far face
+_BEHIND, _FRONT, _NONE = [[2.0, -0.08]], [[2.0, 0.08]], np.zeros((0, 2))
+
+
+@pytest.mark.parametrize("fin, far, wall", [
+    ((2.1, -0.05), _BEHIND, True),  # within near of the face, recorded on a face running against
+    ((2.1, -0.05), _NONE, False),  # the same reading without the map's: the face itself
+    ((2.1, 0.05), _FRONT, False),  # on the free side, its record too: a slit's far wall
+    ((2.1, 0.05), _BEHIND, True),  # on the free side, its record behind: a wall's far face
+    ((2.1, 0.05), _BEHIND + _FRONT, False),  # its records on both sides: not told
+    ((2.1, 0.05), _NONE, False),
 ])
-def test_a_p_fin_within_the_jitter_is_read_by_the_face_it_was_recorded_on(fin, against, wall):
+def test_a_p_fin_within_the_jitter_is_read_by_the_face_it_was_recorded_on(fin, far, wall):
+    """Within ``near`` of the face's line P_fin's side is the jitter's; the far face's record
+    (the mean points of its local lines, ``against``) tells a wall's far face, behind the face
+    slid along, from a slit's far wall in front of it."""
     pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
     faces = []
     got = across_wall(_FACE, _LAST, _NOW, np.array(fin), pose, 1.0, 0.25, 0.1, 1.0,
-                      lambda face: faces.append(face) or against)
+                      lambda face: faces.append(face) or np.asarray(far, float).reshape(-1, 2))
     assert got is wall
     if faces:  # asked with the face slid along, material on its right: +x here
         np.testing.assert_allclose(faces[0], [1.0, 0.0], atol=1e-12)
@@ -214,7 +224,8 @@ def test_a_noisy_face_is_read_over_the_slide_by_least_squares():
                       [1.25, 0.06], [1.5, -0.06], [1.75, 0.08], [2.0, -0.08]])]
     last, now, fin = face[0][-1], np.array([2.2, -0.05]), np.array([2.3, -0.15])
     pose = Posture(np.array([50.0, -0.5]), np.array([0.0, 0.0]))
-    args = (face + [fin[None]], last, now, fin, pose, 1.0, 0.25, 0.3, 1.0, lambda f: True)
+    args = (face + [fin[None]], last, now, fin, pose, 1.0, 0.25, 0.3, 1.0,
+            lambda f: fin[None])  # the far face's record: P_fin alone
     assert not across_wall(*args)  # read off the last two: P_fin on the free side
     assert not across_wall(*args, 0.25)  # span = hop: the same line
     assert across_wall(*args, 2.0)
@@ -263,6 +274,29 @@ def test_a_pass_that_touches_a_needle_from_behind_its_record_is_new(seed, monkey
     assert m["precision_sensor"] >= 0.98
     monkeypatch.setattr(run, "touched_from_behind", lambda *a: False)
     assert _sense(loops, sensor=sensor())[1]["coverage_sensor"] < 0.98
+
+
+def test_a_p_fin_read_in_front_of_a_needle_is_told_by_its_far_faces_record(monkeypatch):
+    """``numerics`` seed 2, sensor seed 1002, sigma 0.3 eps, taxels 0.25 eps: the trace out
+    along the needle's upper face (0.07 eps thick there) meets a P_fin -- a jump's P_2nd read
+    on the lower face -- 0.20 eps in front of the face, within ``near`` (0.54 eps), where a
+    slit's far wall would read: Case 1, and the needle's last 5 eps on both faces were lost
+    (0.976). The lower face's record near P_fin lies behind the face: a wall's far face, and
+    the trace slides on round the needle's end. With P_fin's own side asked alone (the rule
+    before) it fails."""
+    import core2d.planner.tracing as tracing
+    from core2d.planner.thin_walls import far_face_means
+
+    loops = outline("numerics", np.random.default_rng(2), 1.0)
+    res, m = _sense(loops, sensor=_coarse(1002))
+    assert not res.stats.budget_hit
+    assert m["coverage_sensor"] >= 0.98, f"coverage {m['coverage_sensor']:.4f}"
+    assert m["precision_sensor"] >= 0.98
+    own_side = lambda known, res, p, face, radius: (  # noqa: E731
+        np.asarray(p, float)[None] if len(far_face_means(known, res, p, face, radius))
+        else np.zeros((0, 2)))
+    monkeypatch.setattr(tracing, "far_face_means", own_side)
+    assert _sense(loops, sensor=_coarse(1002))[1]["coverage_sensor"] < 0.98
 
 
 def test_a_p_fin_on_the_face_slid_along_is_reached():

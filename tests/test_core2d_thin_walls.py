@@ -4,7 +4,8 @@ A wall 0.7 eps thick beside a slit 2.67 eps wide (the outer wall of
 ``trimesh_octagonal_pocket`` z0 / z7, eps 1 here, exact backend): its outer face traced,
 the lids laid along its slit side used to be closed as contour recorded from B to A.
 ``far_face``: a point recorded on a face running against a given one (a needle's two faces,
-read by their directions, not by a depth the sensor cannot resolve). ``touched_from_behind``:
+read by their directions, not by a depth the sensor cannot resolve); ``far_face_means``: where
+that face's record lies, averaged over its local lines. ``touched_from_behind``:
 a contact whose rod lies on the material side of the record it reads on.
 """
 from __future__ import annotations
@@ -14,7 +15,8 @@ import pytest
 
 from core2d import SensorModel, sense_slice
 from core2d.planner.known import KnownContour
-from core2d.planner.thin_walls import behind_recorded, far_face, touched_from_behind
+from core2d.planner.thin_walls import (behind_recorded, far_face, far_face_means,
+                                      touched_from_behind)
 from core2d.resolution import Resolution
 from core2d.truth.metrics import sensor_metrics
 from slicer.contact.exact import ExactContact
@@ -115,6 +117,22 @@ def test_far_face_needs_a_readable_piece_each_of_which_runs_against():
     short_too = _wall()
     short_too.add([[3.1, 0.3], [3.5, 0.3]])  # a chord under the jitter beside it: skipped
     assert far_face(short_too, COARSE, [3.0, 0.1], face, COARSE.tip_zone)
+
+
+def test_far_face_means_average_the_far_faces_record_per_piece():
+    """One mean point per piece running against the face, over its readings within the
+    window: the far face 0.1 behind the line y = 0 of a face slid along -x, read with a
+    scatter of 0.15, and a reading of it at 0.15 in front of that line -- the mean of the
+    7 readings lies behind the line, within 3 standard errors (0.17) of the far face. None
+    at all when a piece near the point runs along the face (not a far face)."""
+    face = np.array([-1.0, 0.0])
+    known = _wall(y=-0.1, scatter=0.15, seed=3)
+    means = far_face_means(known, COARSE, [3.0, 0.15], face, COARSE.tip_zone)
+    assert means.shape == (1, 2) and means[0, 1] < 0.0 and abs(means[0, 1] + 0.1) < 0.17
+    assert abs(means[0, 0] - 3.0) < 0.3  # the window's readings about the point
+    known.add([[x, 0.3] for x in np.arange(5.5, 0.4, -0.5)])  # a second face, running along it
+    assert far_face_means(known, COARSE, [3.0, 0.15], face, COARSE.tip_zone).shape == (0, 2)
+    assert far_face_means(_wall(), COARSE, [3.0, 2.0], face, COARSE.tip_zone).shape == (0, 2)
 
 
 @pytest.mark.parametrize("point, joint, res, behind", [

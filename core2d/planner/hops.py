@@ -107,7 +107,14 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     and 0.886 - 0.889 of the reachable contour within eps/2 + 2 sigma was
     covered; with the map's reading 0.994 - 0.996 (``tests/test_core2d_needles.py``;
     keyed sensor seed 5000 only without the crossing: 0.888 with it, the
-    crossing read 1.35 eps from the tip).
+    crossing read 1.35 eps from the tip). A P_fin read on the free side is one
+    reading; the far face's record near it, averaged over its local lines (the
+    mean points ``against`` returns), tells the side to the jitter over the square
+    root of its readings: every mean behind the face is a wall's far face, whatever
+    side P_fin read on. ``numerics`` seed 2 at sigma 0.3 eps, taxels 0.25 eps, sensor
+    seed 1002: P_fin, a jump's P_2nd on a needle 0.07 eps thick, read 0.20 eps in front
+    of the face, the far face's record 0.06 - 0.18 eps behind it; the needle's last 5 eps
+    on both faces were lost (0.976 covered).
 
     Parameters
     ----------
@@ -120,8 +127,10 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     hop, near, gap : float -- the lengths of
         :class:`~core2d.resolution.Resolution`: the stretch the face's line is
         read over, the contact noise, how far from the tip a gap can open.
-    against : callable (2,) float -> bool, optional -- was P_fin recorded on a
-        face running against the one given (None: no map, depth only).
+    against : callable (2,) float -> (k, 2) float, optional -- where P_fin was
+        recorded on a face running against the one given, that face's record near it
+        (the mean points of its local lines; none: not such a face; None: no map,
+        depth only; :func:`~core2d.planner.thin_walls.far_face_means`).
     span : float, optional -- the stretch the face's line is read over
         (:attr:`~core2d.resolution.Resolution.face_span`, :func:`face_line`;
         None: ``hop``, the line through its two ends).
@@ -149,7 +158,10 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
         return False  # the stopping step left the face: not a slide past P_fin
     behind = sign * _off_line(origin, u, p_fin)
     if behind >= -near:  # within the jitter of the face's line: by the map's faces, if any
-        return behind < 0.0 and against is not None and bool(against(sign * u / np.hypot(*u)))
+        far = np.zeros((0, 2)) if against is None else against(sign * u / np.hypot(*u))
+        if not len(far):
+            return False
+        return behind < 0.0 or all(sign * _off_line(origin, u, m) < 0.0 for m in far)
     joint = sign * _off_line(origin, u, pose_fin.joint)
     if joint <= 0.0:
         return True  # the whole probe behind the face: it touched P_fin from the far side

@@ -37,7 +37,7 @@ import numpy as np
 from core2d.planner.known import KnownContour
 from core2d.resolution import Resolution
 
-__all__ = ["behind_recorded", "far_face", "touched_from_behind", "WINDOW"]
+__all__ = ["behind_recorded", "far_face", "far_face_means", "touched_from_behind", "WINDOW"]
 
 #: the local line of a recorded piece: its points within this many eps of the contact
 WINDOW = 1.5
@@ -86,19 +86,37 @@ def far_face(known: KnownContour, res: Resolution, point, face, radius: float) -
     >>> far_face(k, res, [9.0, -0.3], np.array([1.0, 0.0]), res.tip_zone)  # nothing recorded
     False
     """
+    return len(far_face_means(known, res, point, face, radius)) > 0
+
+
+def far_face_means(known: KnownContour, res: Resolution, point, face,
+                   radius: float) -> np.ndarray:
+    """(k, 2) float: the mean points of the local lines :func:`far_face` read at ``point``
+    (the recorded far face, one row per piece), or (0, 2) when ``point`` was not recorded
+    on a face running against ``face``.
+
+    A local line's mean point averages its readings (``WINDOW`` eps of them): where the
+    single reading ``point`` lies within the jitter of the face slid along, on either side,
+    the mean tells the side the far face lies on -- behind the face (a wall's far face) or
+    in front of it (a slit's far wall) -- to the jitter over the square root of its
+    readings (:func:`~core2d.planner.hops.across_wall`).
+
+    >>> res = Resolution.of(1.0, noise=0.075, taxel=0.25)
+    >>> k = KnownContour(join=0.5)
+    >>> k.add([[x, -0.1] for x in np.arange(6.0, -0.1, -0.5)])  # a wall's lower face
+    >>> far_face_means(k, res, [3.0, 0.1], np.array([1.0, 0.0]), res.tip_zone).round(2)
+    array([[ 3. , -0.1]])
+    """
     p = np.asarray(point, dtype=np.float64)
-    hits = known.passing(p, radius)
-    if not hits:
-        return False
-    read = False
-    for j, _ in hits:
+    means = []
+    for j, _ in known.passing(p, radius):
         line = _local_chord(known.pieces[j], p, WINDOW * res.eps)
         if line is None or line[2] < max(res.fan_spacing, res.jitter):
             continue  # too short to read its direction to 45 degrees
         if float(line[1] @ face) > -_COS_WALL:
-            return False
-        read = True
-    return read
+            return np.zeros((0, 2))
+        means.append(line[0].mean(axis=0))
+    return np.array(means).reshape(-1, 2)
 
 
 def behind_recorded(known: KnownContour, res: Resolution, point, radius: float) -> bool:

@@ -52,7 +52,7 @@ from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.hops import across_wall, hop_to, split_hops
 from core2d.planner.regions import Posture, T_contains, contains, in_V, near_probe, trace_direction
 from core2d.planner.robot import Robot
-from core2d.planner.thin_walls import far_face
+from core2d.planner.thin_walls import far_face_means
 from core2d.readings import LEFT, RIGHT, TIP
 
 __all__ = ["plan_sides", "split_contact", "trace_side", "attach_pivot_G", "is_internal",
@@ -222,7 +222,8 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
     first = Posture(local.reading.joint, t_star)  # the posture at the polyline's first point
     res, sign, walls = probe.resolution, 1.0 if toward_B else -1.0, 0
     held = None  # (pieces, pose, event) where the controller reported P_fin across a wall
-    against = None if known is None else partial(far_face, known, res, p_fin, radius=res.tip_zone)
+    against = None if known is None else partial(far_face_means, known, res, p_fin,
+                                                  radius=res.tip_zone)
     while budget():
         r = probe.trace(v, tau, 2 * res.tip_zone if held else 4 * probe.radius,
                         stop_at=None if held else p_fin, leave_at=p_other)

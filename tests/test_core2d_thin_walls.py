@@ -135,6 +135,16 @@ def test_far_face_means_average_the_far_faces_record_per_piece():
     assert far_face_means(_wall(), COARSE, [3.0, 2.0], face, COARSE.tip_zone).shape == (0, 2)
 
 
+def test_with_perfect_sensing_the_far_face_is_where_the_reading_is():
+    """Jitter 0: the reading is exact and tells its side itself; the record is not averaged
+    (``across_wall`` asks P_fin's own side, as before the far face's record was read)."""
+    exact = Resolution.of(1.0)
+    face = np.array([-1.0, 0.0])
+    means = far_face_means(_wall(y=-0.1), exact, [3.0, 0.05], face, 0.5)
+    np.testing.assert_array_equal(means, [[3.0, 0.05]])
+    assert far_face_means(_wall(y=-0.1), exact, [3.0, 0.05], -face, 0.5).shape == (0, 2)
+
+
 @pytest.mark.parametrize("point, joint, res, behind", [
     ([3.0, -0.1], [3.0, -40.0], FINE, True),  # the rod up through the material: the far face
     ([3.0, -0.1], [40.0, -30.0], FINE, True),  # slanting: an eps back, 0.73 below the line

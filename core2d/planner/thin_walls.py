@@ -99,7 +99,9 @@ def far_face_means(known: KnownContour, res: Resolution, point, face,
     single reading ``point`` lies within the jitter of the face slid along, on either side,
     the mean tells the side the far face lies on -- behind the face (a wall's far face) or
     in front of it (a slit's far wall) -- to the jitter over the square root of its
-    readings (:func:`~core2d.planner.hops.across_wall`).
+    readings (:func:`~core2d.planner.hops.across_wall`). With perfect sensing (jitter 0)
+    ``point`` is exact and tells the side itself: it is returned, one row, where
+    :func:`far_face` holds (perfect sensing is left as it was).
 
     >>> res = Resolution.of(1.0, noise=0.075, taxel=0.25)
     >>> k = KnownContour(join=0.5)
@@ -116,6 +118,8 @@ def far_face_means(known: KnownContour, res: Resolution, point, face,
         if float(line[1] @ face) > -_COS_WALL:
             return np.zeros((0, 2))
         means.append(line[0].mean(axis=0))
+    if means and res.jitter == 0:
+        return p[None]
     return np.array(means).reshape(-1, 2)
 
 

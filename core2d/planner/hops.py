@@ -113,7 +113,7 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     root of its readings: every mean behind the face is a wall's far face, whatever
     side P_fin read on. ``numerics`` seed 2 at sigma 0.3 eps, taxels 0.25 eps, sensor
     seed 1002: P_fin, a jump's P_2nd on a needle 0.07 eps thick, read 0.20 eps in front
-    of the face, the far face's record 0.06 - 0.18 eps behind it; the needle's last 5 eps
+    of the face, the far face's record 0.087 eps behind it; the needle's last 5 eps
     on both faces were lost (0.976 covered).
 
     Parameters

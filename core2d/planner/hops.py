@@ -64,7 +64,7 @@ def hop_to(pieces, last, p_fin, hop):
 
 
 def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, against=None,
-                span=None) -> bool:
+                span=None, through_stop=False) -> bool:
     """Did Case 1 report P_fin reached across a wall (not along the contour, nor across a gap)?
 
     The controller's radius (the same-point radius eps / 2) takes P_fin as
@@ -116,6 +116,20 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     of the face, the far face's record 0.087 eps behind it; the needle's last 5 eps
     on both faces were lost (0.976 covered).
 
+    A trace that began less than ``hop`` before the stop (at a pass's contact near P_fin)
+    holds no line of its own. ``through_stop`` (a noisy sensor, the map's faces given)
+    reads it through the stop's contact ``now`` too -- the step that passed P_fin slid
+    along the face, as the check on ``now`` asks of a longer trace -- and then answers by
+    the map's faces alone, whatever P_fin's depth: a line read over so few readings says
+    little about where the probe crossed it (where the face ends within the slide that
+    follows, a convex corner, Case 1 stands where the controller stopped:
+    :func:`~core2d.planner.tracing.trace_side`). ``numerics``
+    seed 2 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 2002: the trace from a pass's
+    contact met P_fin (on a needle 0.07 eps thick) after three contacts, the first 0.36
+    eps from the last; with ``now`` (0.96 eps from the farthest) P_fin read 0.25 eps and
+    the far face's record 0.11 eps behind the line of the four; without it the needle's
+    last 5 eps on both faces were lost (0.9715 covered; 1.000 with it).
+
     Parameters
     ----------
     pieces : list of (k, 2) float -- the trace so far, P_fin appended last.
@@ -134,6 +148,8 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     span : float, optional -- the stretch the face's line is read over
         (:attr:`~core2d.resolution.Resolution.face_span`, :func:`face_line`;
         None: ``hop``, the line through its two ends).
+    through_stop : bool -- a trace shorter than ``hop`` is read through ``now`` and
+        answered by ``against`` alone (above); False: such a trace is not across a wall.
 
     Examples
     --------
@@ -151,13 +167,20 @@ def across_wall(pieces, last, now, p_fin, pose_fin, sign, hop, near, gap, agains
     """
     pts = np.concatenate(pieces)[:-1]
     m = _reach_back(pts, len(pts) - 1, -1, hop)
-    if m is None:
-        return False
+    short = m is None
+    if short:  # no line of its own: through the stop's contact, by the map's faces
+        if not through_stop or against is None:
+            return False
+        pts = np.concatenate([pts, np.asarray(now, dtype=np.float64)[None]])
+        last = pts[-1]
+        m = _reach_back(pts, len(pts) - 1, -1, hop)
+        if m is None:
+            return False
     origin, u = face_line(pts, last, m, hop if span is None else span)
     if abs(_off_line(origin, u, now)) > near:
         return False  # the stopping step left the face: not a slide past P_fin
     behind = sign * _off_line(origin, u, p_fin)
-    if behind >= -near:  # within the jitter of the face's line: by the map's faces, if any
+    if short or behind >= -near:  # within the jitter of the face's line: by the map's faces
         far = np.zeros((0, 2)) if against is None else against(sign * u / np.hypot(*u))
         if not len(far):
             return False

@@ -24,7 +24,9 @@ that length by any event (the face ended: a convex corner, not a wall) is Case 1
 the controller stopped. (A slide of eps left a noisy tip within the radius, 0.86 eps
 from P_fin on ``numerics`` seed 0 at sigma 0.3 eps, taxels 0.25 eps, sensor seed 5000:
 the controller reported the same P_fin again at once, a slide more for the same wall, and
-where that second reading failed the needle was lost.)
+where that second reading failed the needle was lost.) With a noisy sensor a trace that met
+P_fin before it read ``hop`` of the face (from a pass's contact near P_fin) is read through
+the controller's stopping contact and answered by the map's faces alone (``through_stop``).
 
 The controller also stops when the probe's body comes within the contact noise of P_fin
 before the tip's path passes it (``reached-body``, registered as Case 2-2 from P_1st to
@@ -248,7 +250,8 @@ def trace_side(probe: Robot, area, G, joint_i, local, toward_B, budget, flow=Non
             now = r.tip_contact
             if not back and last is not None and now is not None and walls < _MAX_WALLS \
                     and across_wall(pieces, last, now.point, p_fin, pose_fin, sign, res.hop,
-                                    res.near, 2 * res.tip_zone, against, res.face_span):
+                                    res.near, 2 * res.tip_zone, against, res.face_span,
+                                    res.jitter > 0):
                 held = (list(pieces), pose1, event)
                 pieces[-1] = pieces[-1][:-1]  # P_fin lies across a wall, not slid to
                 walls += 1

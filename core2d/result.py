@@ -45,7 +45,9 @@ class AreaRecord:
         :func:`core2d.planner.other_side.second_side`),
         ``"audit"`` (a stretch between a loose end and a loose start of the
         recorded contour that no area held), ``"loose"`` (such a stretch the
-        audit left untraced: reported ``"unknown"`` at the end).
+        audit left untraced: reported ``"unknown"`` at the end), ``"orphan"``
+        (the bootstrap again, aimed at a contact met far from everything
+        recorded: :mod:`core2d.planner.orphans`).
     outcome : str
         How it ended: ``"traced"`` (Case 1 over all of it), ``"W2"``,
         ``"W3"``, ``"split"`` (children registered), ``"deferred"`` (a dead

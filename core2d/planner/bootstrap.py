@@ -26,12 +26,13 @@ __all__ = ["bootstrap", "undecided"]
 DECIDED = 3.0
 
 
-def _probe_from(probe: Robot, angle, reads: int = 1):
-    """Insert radially from the circle point at ``angle``; (contact, posture),
-    each the mean of ``reads`` readings where the probe stopped (the first
-    the insertion's own, the others :meth:`Robot.reread`: no motion)."""
+def _probe_from(probe: Robot, angle, reads: int = 1, aim=None):
+    """Insert from the circle point at ``angle`` towards the centre (or ``aim``, (2,));
+    (contact, posture), each the mean of ``reads`` readings where the probe stopped (the
+    first the insertion's own, the others :meth:`Robot.reread`: no motion)."""
     start = probe.center + probe.radius * unit(angle)
-    probe.approach(start, -unit(angle))
+    toward = -unit(angle) if aim is None else np.asarray(aim, dtype=np.float64) - start
+    probe.approach(start, toward / magnitude(toward))
     r = probe.insert(2 * probe.radius)
     c = r.tip_contact
     if c is None:
@@ -45,7 +46,7 @@ def _probe_from(probe: Robot, angle, reads: int = 1):
             Posture(np.mean(np.vstack((r.joint, got.joint[touched])), axis=0), t / magnitude(t)))
 
 
-def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
+def bootstrap(probe: Robot, count=12, far=None, max_depth=3, aim=None):
     """Find the initial unknown areas of a closed slice.
 
     Parameters
@@ -55,6 +56,9 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
     far : float -- refine between neighbours farther apart than this
         (default: workspace radius / 2).
     max_depth : int -- refinement levels.
+    aim : (2,) float, optional -- every insertion aimed at this point instead of the
+        circle's centre (:mod:`core2d.planner.orphans`: an object met once, far from
+        everything recorded).
 
     Returns
     -------
@@ -68,7 +72,7 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
     far = probe.radius / 2 if far is None else far
     angles = list(np.pi / 2 - 2 * np.pi * np.arange(count) / count)
     step = 2 * np.pi / count
-    found = {a: _probe_from(probe, a) for a in angles}
+    found = {a: _probe_from(probe, a, aim=aim) for a in angles}
     for _ in range(max_depth):
         step /= 2
         extra = []
@@ -80,12 +84,12 @@ def bootstrap(probe: Robot, count=12, far=None, max_depth=3):
         if not extra:
             break
         for a in extra:
-            found[a] = _probe_from(probe, a)
+            found[a] = _probe_from(probe, a, aim=aim)
         angles = sorted(angles + extra, reverse=True)
     kept = [a for a in angles if found[a] is not None]
     keep = set()  # pairs whose Def. 3 test the sensor cannot decide: clockwise
     if probe.resolution.jitter > 0:
-        keep = _reread_undecided(probe, kept, found)
+        keep = _reread_undecided(probe, kept, found, aim)
     hits = [found[a] for a in kept]
     if len(hits) < 2:
         return []
@@ -131,7 +135,7 @@ def undecided(q, a, b, res, reads: int = 1) -> bool:
     return abs(float(cross(b - a, q - a))) / ab <= DECIDED * sd
 
 
-def _reread_undecided(probe: Robot, angles, found) -> set:
+def _reread_undecided(probe: Robot, angles, found, aim=None) -> set:
     """Insert again, reading :attr:`~core2d.resolution.Resolution.contact_reads`
     times, from the two ``angles`` of every neighbouring pair whose Def. 3
     test (:func:`_oriented`) one noisy reading cannot decide
@@ -168,7 +172,7 @@ def _reread_undecided(probe: Robot, angles, found) -> set:
                 (posa.joint + posb.joint) / 2, pa, pb, res):
             again.update((a, b))
     for a in sorted(again, reverse=True):
-        got = _probe_from(probe, a, res.contact_reads)
+        got = _probe_from(probe, a, res.contact_reads, aim)
         if got is not None:
             found[a] = got
     keep = set()

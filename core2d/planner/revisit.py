@@ -179,6 +179,7 @@ def _new_contact(run: Exploration, area, point, joint=None) -> bool:
     if _near_end(run, area, point, same) or run.known.distance(point) <= on_map(run.res, area.dist):
         return False
     if joint is not None and run.res.jitter > 0 and not in_reach(area, joint, point):
+        run.orphans.note(run, point)  # far from the record: core2d.planner.orphans
         return False
     if beyond_ends(run.res, area.a, area.b, point):  # a grazing pass past an end
         return False

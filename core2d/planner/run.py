@@ -25,8 +25,10 @@ and once nothing else is left :func:`core2d.planner.revisit.revisit` looks at
 it again with everything the robot has recorded (another pass, another side).
 Finally :func:`core2d.planner.audit.audit` registers the contour that no area
 holds any more (loose ends of the recorded contour: islands, §3.2, and the
-contour behind the ends of a lid that opens to F between two objects), and
-what it leaves is reported unknown (:func:`~core2d.planner.audit.report_leftovers`).
+contour behind the ends of a lid that opens to F between two objects), an
+object met once far from everything recorded is bootstrapped again
+(:func:`core2d.planner.orphans.seek`), and what is left is reported unknown
+(:func:`~core2d.planner.audit.report_leftovers`).
 Areas are processed breadth first until none is left or a budget is hit.
 
 The map, the deferral, the proof for W3, the revisit and the audit are the
@@ -54,6 +56,7 @@ from core2d.planner.known import KnownContour
 from core2d.planner.local_search import bisection, initial_pass
 from core2d.planner.mouths import close_unresolved, is_mouth, traced_gaps
 from core2d.planner.openings import SweptRobot
+from core2d.planner.orphans import Orphans, seek
 from core2d.planner.other_side import second_side
 from core2d.planner.regions import Posture
 from core2d.planner.revisit import finish, lid_like, proof_lines, revisit
@@ -113,6 +116,7 @@ class Exploration:
         self.waiting = []  # (area, reason): lids ready for W3, waiting to close a loop
         self.openings = []  # (A_i, B_i): lids the revisit closed open (core2d.planner.repeats)
         self.audits = 0
+        self.orphans = Orphans()  # contacts met far from the record (core2d.planner.orphans)
         self.mouths = []  # areas processed as mouths (core2d.planner.mouths)
         self.band_w2 = []  # [map piece, sweeps seen]: W2 chords longer than eps (openings)
         # the robot's map; gaps narrower than eps (+ the sensor's jitter) are W2 (§3.1)
@@ -333,7 +337,7 @@ def explore(probe: Robot, eps: float, max_motions: int = 20000, max_areas: int =
             break
         if run.deferred and flow.revisit:
             revisit(run)  # dead ends, with everything recorded so far
-        elif not (flow.audit and audit(run)):  # contour no area holds any more
+        elif not (flow.audit and (audit(run) or seek(run))):  # contour no area holds
             break
     finish(run)
     for area in list(run.queue) + run.deferred:  # the budget ran out

@@ -14,9 +14,9 @@ When nothing else is left (after the revisit and the audit, :func:`seek`), an or
 that far from the record is contour no area holds: the robot bootstraps again, every
 insertion from the workspace circle aimed at the orphan instead of the centre
 (:func:`~core2d.planner.bootstrap.bootstrap`'s ``aim``), and its areas go through the paper's
-flow like the first ones (those whose contour is recorded already close as traced). One such
-round per orphan farther than :data:`UNTOUCHED` eps from the others, at most :data:`MAX_SEEKS`
-rounds in a run. Perfect sensing never makes an orphan, so its runs are unchanged.
+flow like the first ones (those whose contour is recorded already close as traced). A round (a
+call of :func:`seek`) makes one aimed bootstrap per group of orphans within :data:`UNTOUCHED`
+eps of each other; at most :data:`MAX_SEEKS` rounds in a run. Perfect sensing never makes an orphan, so its runs are unchanged.
 
 ``vtk_42400-IDGH`` z-plane 2 of 5 at sigma 0.1 eps, sensor seed 2: a square island 2.5 eps
 wide, 14 eps from every other object, which the first bootstrap's insertions passed by, was

@@ -259,13 +259,23 @@ class KnownContour:
         in the pieces' direction (B after A along the pieces)?"""
         return self.chain(a, b, tol) is not None
 
-    def hops(self, a, b, tol: float) -> list[np.ndarray] | None:
+    def hops(self, a, b, tol: float, ends: bool = False) -> list[np.ndarray] | None:
         """The gaps that the chain of :meth:`covers` from A to B hops between two
         pieces, as (2, 2) float segments from the last point of one piece to the
         point where the next passes it (the gap itself, not the distance to that
-        piece's first point), in order; None when no chain leads there."""
+        piece's first point), in order; None when no chain leads there.
+        ``ends``: also the gap from A to the nearest point of the chain (first) and
+        from the chain's nearest point to B (last): the chain may start on a piece
+        other than A's own, up to ``tol`` away."""
         found = self._chain(a, b, tol, ())
-        return None if found is None else found[1]
+        if found is None:
+            return None
+        points, gaps = found
+        if not ends:
+            return gaps
+        pa, pb = np.asarray(a, float), np.asarray(b, float)
+        return [np.stack([pa, _nearest_on(points, pa)]), *gaps,
+                np.stack([_nearest_on(points, pb), pb])]
 
     def chain(self, a, b, tol: float, exclude=()):
         """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)
@@ -365,3 +375,9 @@ def _end_direction(pl, span) -> np.ndarray:
     far = np.flatnonzero(back >= span)
     return pl[-1] - pl[far[-1] if len(far) else 0]
 
+
+def _nearest_on(points: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """(2,) float: the point of the polyline ``points`` ((k, 2), k >= 2) nearest ``p``."""
+    a, b = points[:-1], points[1:]
+    q = a + segment_params(p, a, b)[:, None] * (b - a)
+    return q[int(np.argmin(np.hypot(*(q - p).T)))]

@@ -49,8 +49,16 @@ import numpy as np
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "record_gaps",
+__all__ = ["ALONG_RECORD", "JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "record_gaps",
            "close_unresolved"]
+
+ALONG_RECORD = ("the lid lies on recorded contour (sensor jitter)",
+                "the lid lies on contour recorded from B to A")
+"""Notes of the areas the revisit closes as traced because their lid lies along
+recorded contour (:func:`~core2d.planner.revisit.on_recorded`,
+:func:`~core2d.planner.revisit.reversed_lid`): within
+:attr:`~core2d.resolution.Resolution.near` of a wall, where the sensor cannot
+tell that wall from another as near (:func:`close_unresolved`)."""
 
 JUMPS = ("case2-1", "case2-2", "hop")
 """Rules (:class:`~core2d.result.AreaRecord`) whose A_i and B_i are the two
@@ -124,6 +132,26 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     and a lid over a slot traced that way ended unknown after its revisit passes.
     Perfect sensing keeps the paper's output as it was.
 
+    With a noisy sensor the chain need not start on A_i's own piece: it starts on
+    any piece passing within ``tol`` of A_i, which may lie across an opening. The
+    gap from A_i to the chain's nearest point, and from the chain's nearest point
+    to B_i, is then a hop like the others (:meth:`~core2d.planner.known.KnownContour.hops`
+    with ``ends``; the nearest point, not the chain's first: a chain whose walk
+    begins on a piece reached from another does not start at A_i, and measured
+    there the gap read 1.3 - 1.9 eps on the ``star`` outline seed 1 at sigma 0.1
+    and turned closed areas into processed ones): as wide as eps or wider, under a
+    sensor whose readings resolve
+    eps/2, the chain covers nothing; wider than the fan spacing and the jitter (a
+    narrower one is the scatter of the end's own reading) and narrower than
+    :func:`_chord_limit`, it is a W2 chord. "No farther than eps from the recorded contour" measured A_i
+    against its own piece: on the ``star`` outline seed 21 (sensor seed 2021,
+    sigma 0.3 eps + taxels 0.25 eps, 16 reads) A_i ended the piece on one side of
+    a slot mouth 0.89 eps wide, the chain started on the piece across it, 0.93
+    eps away, and the slot's 30 eps of contour were covered by nothing
+    (coverage within eps/2 + 2 sigma 0.910 -> 1.000). An end's gap lies within
+    ``tol``, the same-contact radius, below eps under such a sensor: the rule only
+    writes chords, and the motions are those of the planner without it.
+
     Returns
     -------
     list of (2, 2) float (the ends' chords, then the hops'), or None.
@@ -144,16 +172,19 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     >>> [g.tolist() for g in traced_gaps(known, (0.0, 0.0), (8.0, 0.0), 0.5, fine)]
     [[[3.0, 0.0], [3.6, 0.0]]]
     """
-    hops = known.hops(a, b, tol)
+    noisy = res.jitter > 0
+    hops = known.hops(a, b, tol, ends=noisy)
     if hops is None:
         return None
     widths = [float(np.hypot(*(h[1] - h[0]))) for h in hops]
     if resolves_half_eps(res) and max(widths, default=0.0) >= res.eps:
         return None
     ends = end_chords(known, a, b, res)
-    if res.jitter == 0:
+    if not noisy:
         return ends
-    return ends + [h for h, w in zip(hops, widths) if res.fan_spacing < w < _chord_limit(res)]
+    end = max(res.fan_spacing, res.jitter)  # past the scatter of the end's own reading
+    least = [end, *[res.fan_spacing] * (len(hops) - 2), end]
+    return ends + [h for h, w, low in zip(hops, widths, least) if low < w < _chord_limit(res)]
 
 
 def _chord_limit(res: Resolution) -> float:
@@ -282,32 +313,47 @@ def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
 def close_unresolved(run) -> int:
     """Close W2 every processed mouth of ``run`` (an
     :class:`~core2d.planner.run.Exploration`) that was split and has a
-    descendant area that ended unknown; returns how many.
+    descendant area that ended unknown, or that was closed as traced because
+    its lid lies along recorded contour (:data:`ALONG_RECORD`); returns how many.
 
     The mouth read shorter than eps + jitter, the width the sensor cannot
     tell from eps (§3.1 at the sensor's resolution); the flow behind it
     resolved part of C_A^B and left the rest unknown. As at a dead end
     (``Exploration.defer``) the mouth's chord is written W2; the unknown
-    areas behind it stay reported as they are."""
+    areas behind it stay reported as they are.
+
+    A lid closed along recorded contour behind the mouth is the same event:
+    the lid lies within ``near`` (2 tol + the jitter) of one wall, and the
+    other wall of a slot narrower than that lies within it too, unread; the
+    area's C_A^B runs down that wall and back, but the record of the first
+    wall answers for it. On the ``comb`` outline seed 20 (sensor seed 1020,
+    sigma 0.3 eps + taxels 0.25 eps, 16 reads) a slot 0.84 eps wide and 30 eps
+    deep read 1.08 eps across its mouth and was entered; one wall was traced
+    part way and a lid from it to the far corner was closed that way, and the
+    other wall, the bottom and the rest of the first wall were covered by
+    nothing."""
     records = run.result.areas
     kids: dict[int, list[int]] = {}
     for rec in records:
         kids.setdefault(rec.parent, []).append(rec.index)
 
-    def unresolved(i) -> bool:
-        todo = list(kids.get(i, ()))
+    def unresolved(i) -> str | None:
+        todo, found = list(kids.get(i, ())), None
         while todo:
-            j = todo.pop()
-            if records[j].outcome == "unknown":
-                return True
-            todo.extend(kids.get(j, ()))
-        return False
+            rec = records[todo.pop()]
+            if rec.outcome == "unknown":
+                return "stayed unknown"
+            if rec.outcome == "traced" and rec.note in ALONG_RECORD:
+                found = "was closed along a wall the sensor cannot tell from another"
+            todo.extend(kids.get(rec.index, ()))
+        return found
 
     closed = 0
     for area in run.mouths:
         rec = records[area.index]
-        if rec.outcome == "split" and unresolved(area.index):
-            run.close(area, "W2", "split, but an area behind it stayed unknown; "
+        why = unresolved(area.index) if rec.outcome == "split" else None
+        if why is not None:
+            run.close(area, "W2", f"split, but an area behind it {why}; "
                                   "Dist(A,B) < eps + the sensor's jitter")
             closed += 1
     return closed

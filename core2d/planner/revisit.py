@@ -121,7 +121,7 @@ import shapely
 from core2d.planner.areas import Area
 from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
                                     steep_enough, sweep_length)
-from core2d.planner.mouths import end_chords, record_gaps, traced_gaps
+from core2d.planner.mouths import ALONG_RECORD, end_chords, record_gaps, traced_gaps
 from core2d.planner.openings import soften_passed
 from core2d.planner.pass_plan import MAX_SWEEP, MAX_TRIES, PassPlan, spread, sweep
 from core2d.planner.reaim import Aim
@@ -253,8 +253,7 @@ def revisit_one(run: Exploration, area, along: float = 0.0):
     if gaps is not None:
         return run.close(area, "traced", "C_A^B traced through other areas",
                          pieces={"W2": gaps} if gaps else None)
-    for lies_on, note in ((on_recorded, "the lid lies on recorded contour (sensor jitter)"),
-                          (reversed_lid, "the lid lies on contour recorded from B to A")):
+    for lies_on, note in zip((on_recorded, reversed_lid), ALONG_RECORD):
         if lies_on(run, area):  # the ends' chords and the record's breaks along the lid
             gaps = (end_chords(known, area.a, area.b, run.res)
                     + record_gaps(known, area.a, area.b, run.res))

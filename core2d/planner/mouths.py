@@ -148,9 +148,12 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     sigma 0.3 eps + taxels 0.25 eps, 16 reads) A_i ended the piece on one side of
     a slot mouth 0.89 eps wide, the chain started on the piece across it, 0.93
     eps away, and the slot's 30 eps of contour were covered by nothing
-    (coverage within eps/2 + 2 sigma 0.910 -> 1.000). An end's gap lies within
-    ``tol``, the same-contact radius, below eps under such a sensor: the rule only
-    writes chords, and the motions are those of the planner without it.
+    (coverage within eps/2 + 2 sigma 0.910 -> 1.000). An end's gap counts only
+    within ``tol``, the same-contact radius, below eps under such a sensor: the rule
+    only writes chords, and the motions are those of the planner without it. (A
+    chain that passes no nearer its end than that is the walk's, not the record's:
+    one whose walk begins on a piece reached from another passed 2.7 - 14 eps from
+    A_i on the ``comb`` and ``undercut`` outlines seed 4 at sigma 0.1.)
 
     Returns
     -------
@@ -177,13 +180,17 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     if hops is None:
         return None
     widths = [float(np.hypot(*(h[1] - h[0]))) for h in hops]
+    least = [res.fan_spacing] * len(hops)
+    if noisy:  # the ends' gaps: past the scatter of the end's own reading, within tol
+        least[0] = least[-1] = max(res.fan_spacing, res.jitter)
+        inner = range(1, len(hops) - 1)
+        keep = [k for k in range(len(hops)) if k in inner or widths[k] <= tol]
+        hops, widths, least = ([x[k] for k in keep] for x in (hops, widths, least))
     if resolves_half_eps(res) and max(widths, default=0.0) >= res.eps:
         return None
     ends = end_chords(known, a, b, res)
     if not noisy:
         return ends
-    end = max(res.fan_spacing, res.jitter)  # past the scatter of the end's own reading
-    least = [end, *[res.fan_spacing] * (len(hops) - 2), end]
     return ends + [h for h, w, low in zip(hops, widths, least) if low < w < _chord_limit(res)]
 
 

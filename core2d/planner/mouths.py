@@ -49,8 +49,8 @@ import numpy as np
 from core2d.planner.grazing import resolves_half_eps
 from core2d.resolution import Resolution
 
-__all__ = ["ALONG_RECORD", "JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords", "record_gaps",
-           "close_unresolved"]
+__all__ = ["ALONG_RECORD", "JUMPS", "is_mouth", "covered", "traced_gaps", "end_chords",
+           "record_gaps", "close_unresolved"]
 
 ALONG_RECORD = ("the lid lies on recorded contour (sensor jitter)",
                 "the lid lies on contour recorded from B to A")
@@ -135,25 +135,24 @@ def traced_gaps(known, a, b, tol: float, res: Resolution) -> list[np.ndarray] | 
     With a noisy sensor the chain need not start on A_i's own piece: it starts on
     any piece passing within ``tol`` of A_i, which may lie across an opening. The
     gap from A_i to the chain's nearest point, and from the chain's nearest point
-    to B_i, is then a hop like the others (:meth:`~core2d.planner.known.KnownContour.hops`
-    with ``ends``; the nearest point, not the chain's first: a chain whose walk
-    begins on a piece reached from another does not start at A_i, and measured
-    there the gap read 1.3 - 1.9 eps on the ``star`` outline seed 1 at sigma 0.1
-    and turned closed areas into processed ones): as wide as eps or wider, under a
-    sensor whose readings resolve
-    eps/2, the chain covers nothing; wider than the fan spacing and the jitter (a
-    narrower one is the scatter of the end's own reading) and narrower than
-    :func:`_chord_limit`, it is a W2 chord. "No farther than eps from the recorded contour" measured A_i
-    against its own piece: on the ``star`` outline seed 21 (sensor seed 2021,
-    sigma 0.3 eps + taxels 0.25 eps, 16 reads) A_i ended the piece on one side of
-    a slot mouth 0.89 eps wide, the chain started on the piece across it, 0.93
-    eps away, and the slot's 30 eps of contour were covered by nothing
-    (coverage within eps/2 + 2 sigma 0.910 -> 1.000). An end's gap counts only
-    within ``tol``, the same-contact radius, below eps under such a sensor: the rule
-    only writes chords, and the motions are those of the planner without it. (A
-    chain that passes no nearer its end than that is the walk's, not the record's:
-    one whose walk begins on a piece reached from another passed 2.7 - 14 eps from
-    A_i on the ``comb`` and ``undercut`` outlines seed 4 at sigma 0.1.)
+    to B_i, is then a hop like the others
+    (:meth:`~core2d.planner.known.KnownContour.hops` with ``ends``): wider than the
+    fan spacing and the jitter (a narrower one is the scatter of the end's own
+    reading) and narrower than :func:`_chord_limit`, it is a W2 chord. "No farther
+    than eps from the recorded contour" measured A_i against its own piece: on the
+    ``star`` outline seed 21 (sensor seed 2021, sigma 0.3 eps + taxels 0.25 eps, 16
+    reads) A_i ended the piece on one side of a slot mouth 0.89 eps wide, the chain
+    started on the piece across it, 0.93 eps away, and the slot's 30 eps of contour
+    were covered by nothing (coverage within eps/2 + 2 sigma 0.910 -> 1.000).
+
+    An end's gap counts only within ``tol``, the same-contact radius, below eps
+    under a sensor whose readings resolve eps/2: the rule only writes chords, and
+    the motions are those of the planner without it. The map's walk can begin a
+    chain on a piece reached from another (a cycle of continuations), which does
+    not start at A_i: measured to that chain's first point the gap read 1.3 - 1.9
+    eps on the ``star`` outline seed 1 at sigma 0.1 and turned closed areas into
+    processed ones; such a chain passed 2.7 - 14 eps from A_i on the ``comb`` and
+    ``undercut`` outlines seed 4. That is the walk's gap, not the record's.
 
     Returns
     -------

@@ -230,10 +230,7 @@ class KnownContour:
         """(2,) float: the point of the recorded contour nearest ``point`` (None if none)."""
         if len(self._a) == 0:
             return None
-        p = np.asarray(point, float)
-        t = segment_params(p, self._a, self._b)
-        q = self._a + t[:, None] * (self._b - self._a)
-        return q[int(np.argmin(np.hypot(*(q - p).T)))]
+        return _nearest_on(self._a, self._b, np.asarray(point, float))
 
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
@@ -274,8 +271,9 @@ class KnownContour:
         if not ends:
             return gaps
         pa, pb = np.asarray(a, float), np.asarray(b, float)
-        return [np.stack([pa, _nearest_on(points, pa)]), *gaps,
-                np.stack([_nearest_on(points, pb), pb])]
+        a_seg, b_seg = points[:-1], points[1:]
+        return [np.stack([pa, _nearest_on(a_seg, b_seg, pa)]), *gaps,
+                np.stack([_nearest_on(a_seg, b_seg, pb), pb])]
 
     def chain(self, a, b, tol: float, exclude=()):
         """The recorded contour from A to B (see :meth:`covers`) as a (k, 2)
@@ -376,8 +374,7 @@ def _end_direction(pl, span) -> np.ndarray:
     return pl[-1] - pl[far[-1] if len(far) else 0]
 
 
-def _nearest_on(points: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """(2,) float: the point of the polyline ``points`` ((k, 2), k >= 2) nearest ``p``."""
-    a, b = points[:-1], points[1:]
+def _nearest_on(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """(2,) float: the point of the segments a -> b ((n, 2) each, n >= 1) nearest ``p``."""
     q = a + segment_params(p, a, b)[:, None] * (b - a)
     return q[int(np.argmin(np.hypot(*(q - p).T)))]

@@ -12,10 +12,12 @@ from __future__ import annotations
 import numpy as np
 
 from core2d import SensorModel, sense_slice
+from core2d.resolution import repeated_reads
 from core2d.truth.metrics import sensor_metrics
+from outlines import outline
 from slicer.contact.exact import ExactContact
 
-__all__ = ["coverages", "scene_slice", "mesh_slice"]
+__all__ = ["coverages", "scene_slice", "mesh_slice", "outline_run"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
@@ -69,3 +71,18 @@ def scene_slice(name: str, index: int, noise: float, taxel: float, seed: int,
                       sensor=SensorModel.of_eps(eps, noise, taxel, seed, keyed=keyed,
                                                 reads=reads))
     return res, sensor_metrics(loops, res, eps, noise * eps)
+
+
+def outline_run(kind: str, seed: int, sensor_seed: int, noise: float = 0.3,
+                taxel: float = 0.25):
+    """Sense the seeded outline ``kind``-``seed`` of ``tests/outlines.py`` (exact backend,
+    eps 1) with the sensor (``noise`` and ``taxel`` in eps, ``sensor_seed``, the reads
+    ``recon3d run`` takes), as the sensor study does; returns the result and
+    :func:`~core2d.truth.metrics.sensor_metrics` of it."""
+    loops = outline(kind, np.random.default_rng(seed), 1.0)
+    pts = np.concatenate(loops)
+    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
+    sensor = SensorModel.of_eps(1.0, noise, taxel, sensor_seed,
+                                reads=repeated_reads(1.0, noise, taxel))
+    res = sense_slice(ExactContact(loops), ws, 1.0, sensor=sensor)
+    return res, sensor_metrics(loops, res, 1.0, noise)

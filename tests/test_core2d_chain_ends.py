@@ -15,17 +15,14 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from core2d import SensorModel, sense_slice
 from core2d.planner import mouths, revisit
 from core2d.planner import run as run_module
 from core2d.planner.areas import Area
 from core2d.planner.known import KnownContour
 from core2d.planner.mouths import ALONG_RECORD, close_unresolved, traced_gaps
 from core2d.planner.run import Budget, Exploration
-from core2d.resolution import Resolution, repeated_reads
-from core2d.truth.metrics import sensor_metrics
-from outlines import outline
-from slicer.contact.exact import ExactContact
+from core2d.resolution import Resolution
+from noisy_runs import outline_run
 
 FINE = Resolution.of(1.0, noise=0.0775, taxel=0.25)  # sigma 0.3 eps read 16 times: jitter 0.45
 PERFECT = Resolution.of(1.0)
@@ -66,23 +63,13 @@ def test_a_chain_starting_eps_away_covers_nothing_with_a_fine_sensor():
     assert traced_gaps(_far_wall(0.9), (0.0, 0.0), B, 0.95, PERFECT) == []
 
 
-def _outline_run(kind, seed, sensor_seed, noise=0.3, taxel=0.25):
-    loops = outline(kind, np.random.default_rng(seed), 1.0)
-    pts = np.concatenate(loops)
-    ws = ((pts.min(0) + pts.max(0)) / 2, float(np.linalg.norm(np.ptp(pts, axis=0)) / 2 + 1.0))
-    sensor = SensorModel.of_eps(1.0, noise, taxel, sensor_seed,
-                                reads=repeated_reads(1.0, noise, taxel))
-    res = sense_slice(ExactContact(loops), ws, 1.0, sensor=sensor)
-    return res, sensor_metrics(loops, res, 1.0, noise)
-
-
 def test_star_slot_whose_mouth_a_chain_started_across():
     """``star`` outline seed 21, sensor seed 2021, sigma 0.3 eps + taxels 0.25 eps
     (16 reads): a Case 2-1 area over a slot mouth 0.89 eps wide read 1.05 eps; the
     chain to B_i started on the piece across the mouth, 0.93 eps from A_i, and the
     area was closed as traced with no chord: the slot's 30 eps of contour were
     covered by nothing (coverage within eps/2 + 2 sigma 0.910 before, 1.000 now)."""
-    res, m = _outline_run("star", 21, 2021)
+    res, m = outline_run("star", 21, 2021)
     assert m["coverage_sensor"] >= 0.98, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
 
@@ -125,7 +112,7 @@ def test_comb_slot_entered_through_its_mouth_and_closed_along_one_wall():
     mouth's W2 the rest of the slot was covered by nothing: coverage within
     eps/2 + 2 sigma 0.897, 0.968 with it (the slots narrower than eps elsewhere
     on the comb keep it under 0.98)."""
-    res, m = _outline_run("comb", 20, 1020)
+    res, m = outline_run("comb", 20, 1020)
     closed = [r for r in res.areas if r.outcome == "W2" and "closed along a wall" in r.note]
     assert len(closed) >= 1
     assert m["coverage_sensor"] >= 0.95, m["coverage_sensor"]
@@ -156,10 +143,10 @@ def test_the_chain_ends_add_chords_and_leave_the_motions_as_they_were(
     (the chain's nearest point 14 eps from A_i on ``undercut-4``, sensor seed 2004),
     2,175 -> 2,201. As kept, the rule only writes chords: the same motions and W1,
     as much W2 or more."""
-    now, _ = _outline_run(kind, seed, sensor_seed, noise=0.1, taxel=0.0)
+    now, _ = outline_run(kind, seed, sensor_seed, noise=0.1, taxel=0.0)
     for module in (run_module, revisit):
         monkeypatch.setattr(module, "traced_gaps", _without_ends)
-    before, _ = _outline_run(kind, seed, sensor_seed, noise=0.1, taxel=0.0)
+    before, _ = outline_run(kind, seed, sensor_seed, noise=0.1, taxel=0.0)
     assert now.stats.motions == before.stats.motions
     assert len(now.w1) == len(before.w1)
     assert all(np.array_equal(p, q) for p, q in zip(now.w1, before.w1))

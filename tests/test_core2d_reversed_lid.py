@@ -7,7 +7,7 @@ makes W3 there, but a Case 2-2 split at a contact on the slit's far wall left
 a child whose lid runs along the traced lower wall, read from B to A. Six
 passes found nothing new behind it (there is nothing: the lid lies on the
 wall) and it was reported as an unknown chord whose C_A^B is the rest of the
-loop (673 of 703 units). ``revisit.reversed_lid`` closes such an area as
+loop (673 of 703 units). ``along.reversed_lid`` closes such an area as
 traced. The same happens on the built-in ``numerics`` outline of seed 1, so
 the rule is tested without ``../shared`` too.
 """

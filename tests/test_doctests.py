@@ -30,6 +30,7 @@ MODULES = [
     "core2d.planner.local_search",
     "core2d.planner.touched",
     "core2d.planner.mouths",
+    "core2d.planner.along",
     "core2d.planner.tip_bound",
     "core2d.planner.thin_walls",
     "core2d.planner.hops",

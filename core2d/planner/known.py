@@ -232,6 +232,12 @@ class KnownContour:
             return None
         return _nearest_on(self._a, self._b, np.asarray(point, float))
 
+    def runs_along(self, point, r: float, direction) -> bool:
+        """Does a recorded segment within ``r`` of ``point`` (2,) run along
+        ``direction`` (2,): a positive component on it? (False if none is within ``r``.)"""
+        g = self._within(np.asarray(point, float), float(r))
+        return bool(len(g)) and bool(((self._b[g] - self._a[g]) @ direction > 0).any())
+
     def crosses(self, p, q, margin: float) -> bool:
         """Does segment pq cross recorded contour farther than ``margin`` from p and q?"""
         a, b = self._a, self._b

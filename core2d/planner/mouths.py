@@ -55,8 +55,8 @@ __all__ = ["ALONG_RECORD", "JUMPS", "is_mouth", "covered", "traced_gaps", "end_c
 ALONG_RECORD = ("the lid lies on recorded contour (sensor jitter)",
                 "the lid lies on contour recorded from B to A")
 """Notes of the areas the revisit closes as traced because their lid lies along
-recorded contour (:func:`~core2d.planner.revisit.on_recorded`,
-:func:`~core2d.planner.revisit.reversed_lid`): within
+recorded contour (:func:`~core2d.planner.along.on_recorded`,
+:func:`~core2d.planner.along.reversed_lid`): within
 :attr:`~core2d.resolution.Resolution.near` of a wall, where the sensor cannot
 tell that wall from another as near (:func:`close_unresolved`)."""
 
@@ -209,8 +209,8 @@ def end_chords(known, a, b, res: Resolution) -> list[np.ndarray]:
     """W2 chords from A_i, and to B_i, from the nearest recorded point, for each end
     farther than eps from the recorded contour (:func:`traced_gaps`); an area closed
     as traced because its lid lies along recorded contour
-    (:func:`~core2d.planner.revisit.on_recorded`,
-    :func:`~core2d.planner.revisit.reversed_lid`) has the same ends.
+    (:func:`~core2d.planner.along.on_recorded`,
+    :func:`~core2d.planner.along.reversed_lid`) has the same ends.
 
     Returns
     -------
@@ -227,8 +227,8 @@ def end_chords(known, a, b, res: Resolution) -> list[np.ndarray]:
 def record_gaps(known, a, b, res: Resolution) -> list[np.ndarray]:
     """W2 chords over the breaks of the recorded contour along the lid A_iB_i
     of an area closed as traced because its lid lies along recorded contour
-    (:func:`~core2d.planner.revisit.on_recorded`,
-    :func:`~core2d.planner.revisit.reversed_lid`).
+    (:func:`~core2d.planner.along.on_recorded`,
+    :func:`~core2d.planner.along.reversed_lid`).
 
     Such a lid passes within :attr:`~core2d.resolution.Resolution.near` (2 tol
     + the jitter) of the record at every point it is sampled at, so a break

@@ -9,7 +9,9 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
 
 1. C_A^B has meanwhile been traced through other areas -> closed as traced;
    so is a lid lying along contour recorded from B_i to A_i (a traced wall
-   read backwards, :func:`reversed_lid`). An end farther than eps from the
+   read backwards, :func:`~core2d.planner.along.reversed_lid`), and with a
+   noisy sensor one lying along contour recorded from A_i towards B_i
+   (:func:`~core2d.planner.along.on_recorded`). An end farther than eps from the
    recorded contour is joined to it by a W2 chord
    (:func:`~core2d.planner.mouths.traced_gaps`). With a noisy sensor a lid
    that repeats one closed ``open`` before, each end another reading of that
@@ -116,8 +118,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 
+from core2d.planner.along import on_recorded, reversed_lid
 from core2d.planner.areas import Area
 from core2d.planner.grazing import (Blockers, beyond_ends, end_radius, resolves_half_eps,
                                     steep_enough, sweep_length)
@@ -131,7 +133,6 @@ from core2d.planner.short_lids import lid_end_radius, on_map
 from core2d.planner.swing_passes import swing_gaps, swing_lid
 from core2d.planner.touched import Fill, Touches, applies
 from core2d.planner.w3_checks import closes_loop, holds_lid
-from core2d.planner.thin_walls import behind_recorded
 from core2d.planner.tracing import reread_pass
 
 if TYPE_CHECKING:  # the planner state that drives this module; typing only
@@ -198,48 +199,6 @@ def _split(run: Exploration, area, c, pose_c):
     return run.children(area, [
         Area(area.a, c, area.pose_a, pose_c, area.index, "revisit", d, seen=seen),
         Area(c, area.b, pose_c, area.pose_b, area.index, "revisit", d, seen=seen)])
-
-
-def on_recorded(run: Exploration, area) -> bool:
-    """With a noisy sensor: does the whole lid lie within
-    :attr:`~core2d.resolution.Resolution.near` (2 tol + the jitter) of
-    recorded contour? Its ends are readings that scatter by the jitter, so
-    two readings of one wall can make a lid along that wall (or a hair
-    inside it) whose C_A^B the robot has recorded but whose pieces do not
-    chain (:meth:`~core2d.planner.known.KnownContour.covers`): nothing
-    hides behind it, and the W3 proof (no free line crosses it past the
-    noisy record) would make W3 of a traced wall. A short lid's middle band
-    must lie on the map too (:func:`~core2d.planner.short_lids.on_map`).
-    Perfect sensing (jitter 0) leaves the paper's flow as it is."""
-    if run.res.jitter == 0:
-        return False
-    k = int(np.ceil(area.dist / run.res.fan_spacing)) + 1
-    pts = area.a + np.linspace(0.0, 1.0, k)[:, None] * (area.b - area.a)
-    near = on_map(run.res, area.dist)  # a short lid: its middle band is off the map
-    return all(run.known.distance(p) <= near for p in pts)
-
-
-def reversed_lid(run: Exploration, area) -> bool:
-    """Does the lid A_iB_i lie on contour the robot recorded from B_i to A_i?
-
-    A split at a contact on the far wall of a slit (Case 2-2, P_1st on the
-    wall facing the one traced) can make a child whose lid runs along a
-    traced wall, read backwards: the chain of pieces leads from B_i to A_i
-    within eps/2 of the lid (Hausdorff distance), and none from A_i to B_i.
-    Its C_A^B (from A_i along the pieces) is then the rest of the loop, which
-    the other areas hold; nothing lies behind the lid itself (G_i between the
-    lid and the wall is narrower than eps/2, §3.1), so no pass can find
-    anything and the area would only report an unknown chord over traced
-    contour. It is closed as traced -- unless, with a noisy sensor, the lid's
-    middle lies on the chain's material side deeper than the jitter: the lid
-    then runs along the back of a wall thinner than the radius, contour of its
-    own (:mod:`core2d.planner.thin_walls`)."""
-    chain = run.known.chain(area.b, area.a, run.res.tip_zone)
-    if chain is None or len(chain) < 2 or behind_recorded(
-            run.known, run.res, (area.a + area.b) / 2, run.res.tip_zone):
-        return False  # (the lid along the back of a thin wall: core2d.planner.thin_walls)
-    lid = shapely.linestrings(np.stack([area.a, area.b]))
-    return bool(shapely.hausdorff_distance(lid, shapely.linestrings(chain)) <= run.res.tip_zone)
 
 
 def revisit_one(run: Exploration, area, along: float = 0.0):

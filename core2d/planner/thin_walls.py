@@ -1,7 +1,7 @@
 """The back of a thin wall under a noisy sensor: a lid behind recorded contour.
 
 A split at a contact on the far wall of a slit can make a child whose lid runs along contour
-the robot recorded from B_i to A_i; :func:`core2d.planner.revisit.reversed_lid` closes such an
+the robot recorded from B_i to A_i; :func:`core2d.planner.along.reversed_lid` closes such an
 area as traced when the chain of pieces from B_i to A_i lies within the same-contact radius
 eps/2 + the sensor's jitter of the lid (Hausdorff distance). By distance alone the two faces
 of a wall thinner than that radius are one: ``trimesh_octagonal_pocket`` z0 and z7 hold an

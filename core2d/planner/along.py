@@ -22,8 +22,6 @@ along the lid.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 import shapely
 
@@ -31,13 +29,12 @@ from core2d.planner.grazing import resolves_half_eps
 from core2d.planner.short_lids import on_map
 from core2d.planner.thin_walls import behind_recorded
 
-if TYPE_CHECKING:  # pragma: no cover
-    from core2d.planner.run import Exploration
-
 __all__ = ["on_recorded", "reversed_lid"]
 
+# ``run`` below: the planner's state (core2d.planner.run.Exploration; its ``res`` and ``known``)
 
-def on_recorded(run: Exploration, area) -> bool:
+
+def on_recorded(run, area) -> bool:
     """With a noisy sensor: does the whole lid lie within
     :attr:`~core2d.resolution.Resolution.near` (2 tol + the jitter) of
     recorded contour running from A_i towards B_i? Its ends are readings
@@ -85,7 +82,7 @@ def on_recorded(run: Exploration, area) -> bool:
     return all(run.known.runs_along(p, near, along) for p in pts)
 
 
-def reversed_lid(run: Exploration, area) -> bool:
+def reversed_lid(run, area) -> bool:
     """Does the lid A_iB_i lie on contour the robot recorded from B_i to A_i?
 
     A split at a contact on the far wall of a slit (Case 2-2, P_1st on the

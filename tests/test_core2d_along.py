@@ -3,7 +3,7 @@
 
 With a noisy sensor, :func:`~core2d.planner.along.on_recorded` closes an area whose
 lid lies within ``near`` of the record: two readings of one wall. In a slot narrower
-than that radius the facing wall is within it too, recorded the other way (C_B^A):
+than that radius a wall of C_B^A is within it too, recorded the other way:
 a lid from one wall to the far corner of the slot's mouth then lay "on recorded
 contour" and the slot behind it, C_A^B, was covered by nothing.
 """
@@ -60,7 +60,7 @@ def test_perfect_sensing_keeps_the_papers_flow():
 
 
 @pytest.mark.parametrize("sensor_seed, least", [(20, 0.97), (1020, 0.98)])
-def test_comb_slots_entered_past_a_lid_along_the_facing_wall(sensor_seed, least):
+def test_comb_slots_entered_past_a_lid_along_a_wall_recorded_the_other_way(sensor_seed, least):
     """``comb`` outline seed 20, sigma 0.3 eps + taxels 0.25 eps (16 reads). Seed 20:
     a lid from the left wall of a slot 0.72 eps wide (2.3 eps deep) to its right
     corner lay within ``near`` of the left wall, traced downwards, and was closed

@@ -11,14 +11,13 @@ traced before any pass is made (notes :data:`~core2d.planner.mouths.ALONG_RECORD
 
 The map's pieces run in the contour's direction (Definition 3: material on their right;
 :mod:`core2d.planner.tracing` reverses a trace made towards A_i), so C_A^B runs from A_i
-to B_i. Contour recorded the other way along the lid is C_B^A, the facing wall of a slit
-narrower than the radius; the lid may then span the slit's mouth with C_A^B, the slit,
-behind it (``comb-20`` at sigma 0.3 + T 0.25, sensor seeds 20 and 1020: lids from one
-wall of a slot 0.72 eps wide, 2.3 eps deep, to the far corner of its mouth, and from a
-corner of one 0.51 eps wide to its far wall 2.8 - 4.6 eps deep; the slots are 16 - 21 eps
-deep). That is :func:`reversed_lid`'s case when the chain from B_i to A_i lies along the
-lid, and the passes' when it does not; :func:`on_recorded` counts only the record that runs
-along the lid.
+to B_i. Contour recorded the other way along the lid belongs to C_B^A: in a slit narrower
+than the radius, a wall beside a lid laid inside it, with C_A^B, the rest of the slit, behind
+the lid (``comb-20`` at sigma 0.3 + T 0.25, sensor seeds 20 and 1020: lids from one wall of a
+slot 0.72 eps wide, 2.3 eps deep, to the far corner of its mouth, and from a corner of one
+0.51 eps wide to its far wall 2.8 - 4.6 eps deep; the slots are 16 - 21 eps deep). That is
+:func:`reversed_lid`'s case when the chain from B_i to A_i lies along the lid, and the
+passes' when it does not; :func:`on_recorded` counts only the record that runs along the lid.
 """
 from __future__ import annotations
 
@@ -46,8 +45,8 @@ def on_recorded(run, area) -> bool:
     record) would make W3 of a traced wall. A lid sample counts when a
     recorded segment within that distance has a positive component along
     B_i - A_i (:meth:`~core2d.planner.known.KnownContour.runs_along`):
-    contour recorded only the other way is C_B^A, the facing wall (module
-    doc). Only while the sensor resolves eps/2
+    contour recorded only the other way belongs to C_B^A (module doc).
+    Only while the sensor resolves eps/2
     (:func:`~core2d.planner.grazing.resolves_half_eps`): a coarser one keeps
     the distance alone, the test its path was measured with (at sigma 1 eps,
     one read, the direction moved ``comb`` z4 0.997 -> 0.821 and

@@ -146,8 +146,9 @@ def test_the_comb_scenes_slot_under_a_hop_or_a_lid_is_covered(z, seed):
 
 def _slot_covered(res, loops, x, eps, tol) -> float:
     """Share of the reachable contour samples of the slot at ``x`` below the top face
-    (within 0.3 units of x) within ``tol`` of W1 or W2, or under a W2 chord's arc."""
-    from core2d.truth.metrics import lid_arcs
+    (within 0.3 units of x) that the metrics count covered: within ``tol`` of W1 or W2,
+    or under a W2 chord that spans an opening (:func:`~core2d.truth.metrics.w2_credit`)."""
+    from core2d.truth.metrics import w2_credit
     from core2d.truth.nearest import segment_distances
     from core2d.truth.reachability import reachable_samples
 
@@ -159,11 +160,8 @@ def _slot_covered(res, loops, x, eps, tol) -> float:
     a = np.concatenate([p[:-1] for p in pieces])
     b = np.concatenate([p[1:] for p in pieces])
     near = segment_distances(pts, a, b) <= tol
-    chords = [np.asarray(c) for c in res.w2 if len(c) == 2]
-    arcs = lid_arcs(loops, chords, samples, resolution=eps / 4)
-    short = arcs["arc_length"] < 0.5 * samples.loop_lengths[0]
-    under = arcs["member"][short & (arcs["area"] > 0)].any(axis=0)
-    return float((slot & (near | under)).sum() / slot.sum())
+    behind = w2_credit(loops, res.w2, samples, eps / 4)[0]
+    return float((slot & (near | behind)).sum() / slot.sum())
 
 
 def _spans_mouth(w2, loop, x, eps) -> bool:

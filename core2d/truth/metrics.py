@@ -57,7 +57,7 @@ from .nearest import segment_distances
 from .reachability import ContourSamples, contour_edges, reachable_samples, subdivide
 from .resolvable import resolvable
 
-__all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs"]
+__all__ = ["slice_metrics", "sensor_metrics", "total_metrics", "lid_arcs", "w2_credit"]
 
 _RATIOS = {"coverage": ("covered_length", "reachable_length"),
            "precision": ("precise_length", "detected_length"),
@@ -167,6 +167,22 @@ def lid_arcs(loops, lids, samples: ContourSamples, resolution: float = 0.0) -> d
     return out
 
 
+def w2_credit(loops, w2, samples: ContourSamples, spacing: float):
+    """The contour §3.1 approximates by W2 chords: ``(behind, arcs, long, material)``.
+
+    ``behind`` (m,) bool -- samples under the arc of some W2 chord that spans an
+    opening; ``arcs`` -- :func:`lid_arcs` of ``w2``; ``long`` (n,) bool -- chords whose
+    arc is longer than the rest of its loop (a reversed chord, not a W2 area);
+    ``material`` (n,) bool -- chords whose arc runs round material (a chord across a
+    thin wall's tip). Neither of the last two spans an opening, so neither credits
+    its samples.
+    """
+    arcs = lid_arcs(loops, w2, samples, resolution=spacing)
+    long_ = arcs["arc_length"] > 0.5 * np.append(samples.loop_lengths, 0.0)[arcs["loop"]]
+    material = ~long_ & (arcs["area"] < 0)
+    return arcs["member"][~long_ & ~material].any(axis=0), arcs, long_, material
+
+
 def _closed_area(samples: ContourSamples, under, s_a: float, length: float, ends) -> float:
     """Signed area of the polygon A, the samples ``under`` a lid from A on, B (shoelace).
 
@@ -225,12 +241,7 @@ def slice_metrics(loops, result: SliceResult, eps: float, tol: float | None = No
     else:
         d_true = np.full(len(w), np.inf)
         dl = d_det = d_det_pieces = np.zeros(0)
-    w2_arcs = lid_arcs(loops, result.w2, samp, resolution=spacing)
-    # an arc longer than the rest of its loop is a reversed chord, not a W2 area; an arc
-    # round material is a chord across a thin wall's tip: neither spans an opening (§3.1)
-    w2_long = w2_arcs["arc_length"] > 0.5 * np.append(samp.loop_lengths, 0.0)[w2_arcs["loop"]]
-    w2_material = ~w2_long & (w2_arcs["area"] < 0)
-    behind_w2 = w2_arcs["member"][~w2_long & ~w2_material].any(axis=0)
+    behind_w2, w2_arcs, w2_long, w2_material = w2_credit(loops, result.w2, samp, spacing)
     covered = reach & ((d_true <= tol) | behind_w2)
     # the arcs round material that would credit reachable contour farther than tol
     w2_material &= (w2_arcs["member"] & (reach & (d_true > tol))).any(axis=1)

@@ -17,7 +17,7 @@ from core2d.truth.metrics import sensor_metrics
 from outlines import outline
 from slicer.contact.exact import ExactContact
 
-__all__ = ["coverages", "scene_slice", "mesh_slice", "outline_run"]
+__all__ = ["coverages", "scene_slice", "mesh_slice", "outline_run", "slot_covered"]
 
 
 def coverages(loops, ws, noise: float, seeds, eps: float = 1.0,
@@ -86,3 +86,23 @@ def outline_run(kind: str, seed: int, sensor_seed: int, noise: float = 0.3,
                                 reads=repeated_reads(1.0, noise, taxel))
     res = sense_slice(ExactContact(loops), ws, 1.0, sensor=sensor)
     return res, sensor_metrics(loops, res, 1.0, noise)
+
+
+def slot_covered(res, loops, x, eps, tol) -> float:
+    """Share of the reachable contour samples of the slot at ``x`` below the top face
+    (within 0.3 units of x) that the metrics count covered: within ``tol`` of W1 or W2,
+    or under a W2 chord that spans an opening (:func:`~core2d.truth.metrics.w2_credit`)."""
+    from core2d.truth.metrics import w2_credit
+    from core2d.truth.nearest import segment_distances
+    from core2d.truth.reachability import reachable_samples
+
+    samples, reach = reachable_samples(loops, eps / 4)
+    pts = samples.points
+    top = max(lp[:, 1].max() for lp in loops)
+    slot = reach & (np.abs(pts[:, 0] - x) < 0.3) & (pts[:, 1] < top - 0.25 * eps)
+    pieces = [np.asarray(p) for p in list(res.w1) + list(res.w2)]
+    a = np.concatenate([p[:-1] for p in pieces])
+    b = np.concatenate([p[1:] for p in pieces])
+    near = segment_distances(pts, a, b) <= tol
+    behind = w2_credit(loops, res.w2, samples, eps / 4)[0]
+    return float((slot & (near | behind)).sum() / slot.sum())

@@ -129,7 +129,7 @@ def test_the_comb_scenes_slot_under_a_hop_or_a_lid_is_covered(z, seed):
     The scene's slots narrower than eps keep it below the target (noiseless z7 0.876)."""
     import meshes
     import slicer
-    from noisy_runs import scene_slice
+    from noisy_runs import scene_slice, slot_covered
 
     res, m = scene_slice("comb", z, 0.1, 0.0, seed, keyed=True)
     mesh = meshes.load("comb")
@@ -138,30 +138,10 @@ def test_the_comb_scenes_slot_under_a_hop_or_a_lid_is_covered(z, seed):
     if z == 7:
         assert _spans_mouth(res.w2, loops[0], 17.35, eps), "no W2 chord over the slot's mouth"
     else:
-        share = _slot_covered(res, loops, 17.35, eps, eps / 2 + 2 * 0.1 * eps)
+        share = slot_covered(res, loops, 17.35, eps, eps / 2 + 2 * 0.1 * eps)
         assert share >= 0.95, share
     assert m["coverage_sensor"] >= 0.9, m["coverage_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
-
-
-def _slot_covered(res, loops, x, eps, tol) -> float:
-    """Share of the reachable contour samples of the slot at ``x`` below the top face
-    (within 0.3 units of x) that the metrics count covered: within ``tol`` of W1 or W2,
-    or under a W2 chord that spans an opening (:func:`~core2d.truth.metrics.w2_credit`)."""
-    from core2d.truth.metrics import w2_credit
-    from core2d.truth.nearest import segment_distances
-    from core2d.truth.reachability import reachable_samples
-
-    samples, reach = reachable_samples(loops, eps / 4)
-    pts = samples.points
-    top = max(lp[:, 1].max() for lp in loops)
-    slot = reach & (np.abs(pts[:, 0] - x) < 0.3) & (pts[:, 1] < top - 0.25 * eps)
-    pieces = [np.asarray(p) for p in list(res.w1) + list(res.w2)]
-    a = np.concatenate([p[:-1] for p in pieces])
-    b = np.concatenate([p[1:] for p in pieces])
-    near = segment_distances(pts, a, b) <= tol
-    behind = w2_credit(loops, res.w2, samples, eps / 4)[0]
-    return float((slot & (near | behind)).sum() / slot.sum())
 
 
 def _spans_mouth(w2, loop, x, eps) -> bool:

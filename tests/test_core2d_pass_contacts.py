@@ -1,8 +1,8 @@
-"""Which contacts of a revisit pass split A_iB_i with a noisy sensor
-(:mod:`core2d.planner.pass_contacts`): a coarse sensor's contact met in front of a lid
-whose children's lids would cross recorded contour (:func:`splits_across_record`) is
-held while a spread's worth more passes look for C_A^B, and splits the lid only when
-they find nothing (:func:`core2d.planner.revisit.revisit_one`).
+"""Which contacts of a revisit pass split A_iB_i (:mod:`core2d.planner.pass_contacts`):
+with perfect sensing or a coarse sensor, a contact met in front of a lid whose
+children's lids would cross recorded contour (:func:`splits_across_record`) is held
+while a spread's worth more passes look for C_A^B, and splits the lid only when they
+find nothing (:func:`core2d.planner.revisit.revisit_one`).
 """
 from __future__ import annotations
 
@@ -32,24 +32,57 @@ def _wall_and_lid():
     return known, area
 
 
+@pytest.mark.parametrize("res", [COARSE, Resolution.of(1.0)], ids=["coarse", "perfect"])
 @pytest.mark.parametrize("joint, point, expected", [
     ((0.0, 25.0), (0.0, 5.0), True),    # in front, beyond the wall: A_iC crosses it
     ((8.0, 25.0), (8.0, 6.0), False),   # in front, on this side of the wall: no crossing
     ((20.0, 25.0), (20.0, -8.0), False),  # behind the lid (A_iC crosses x = 12 there)
-    ((2.5, 25.0), (2.5, 2.0), False),   # the crossings within `near` of C: C's own wall
 ])
-def test_a_child_lid_across_the_record_is_flagged(joint, point, expected):
+def test_a_child_lid_across_the_record_is_flagged(res, joint, point, expected):
     known, area = _wall_and_lid()
-    got = splits_across_record(COARSE, known, area, np.array(joint), np.array(point))
+    got = splits_across_record(res, known, area, np.array(joint), np.array(point))
     assert got is expected
 
 
-@pytest.mark.parametrize("res", [Resolution.of(1.0), Resolution.of(1.0, noise=0.1),
+@pytest.mark.parametrize("res, expected", [(COARSE, False), (Resolution.of(1.0), True)],
+                         ids=["coarse", "perfect"])
+def test_a_crossing_within_near_of_the_contact_is_its_own_wall(res, expected):
+    """C 0.5 eps beside the wall x = 3: within a coarse sensor's ``near`` (its jitter) the
+    crossing is C's own wall read off by the noise; a perfect sensor's C lies off it."""
+    known, area = _wall_and_lid()
+    assert COARSE.near > 0.5 > Resolution.of(1.0).near
+    got = splits_across_record(res, known, area, np.array([2.5, 25.0]), np.array([2.5, 2.0]))
+    assert got is expected
+
+
+@pytest.mark.parametrize("res", [Resolution.of(1.0, noise=0.1),
                                  Resolution.of(1.0, taxel=0.25)])
-def test_perfect_and_fine_sensors_keep_the_paper_flow(res):
+def test_fine_sensors_keep_the_paper_flow(res):
     known, area = _wall_and_lid()
     assert not splits_across_record(res, known, area, np.array([0.0, 25.0]),
                                     np.array([0.0, 5.0]))
+
+
+def test_a_held_contact_lets_the_passes_reach_an_unexplored_slot_wall(monkeypatch):
+    """The ``comb`` scene, z-slice 4 of 8, perfect sensing: a deferred lid runs down the
+    slot 0.89 eps wide at x 17.35 from its floor to the far corner of its mouth, the
+    slot's right wall (84 eps) behind it, not yet explored. Its first pass came in
+    through the mouth of a slot 21 eps to the left and stopped on that slot's unexplored
+    wall, in front of the lid; split there, the children's lids crossed the teeth
+    between and the right wall was covered by nothing (the slot's samples 0.50
+    covered, measured on the true section). Held, the next passes come down the slot
+    and reach the wall. Without the hold (the flag never raised) the share falls."""
+    from noisy_runs import scene_slice, slot_covered, mesh_slice
+
+    _, eps, _, loops = mesh_slice("comb", 4)
+    held, m_held = scene_slice("comb", 4, 0.0, 0.0, 0)
+    monkeypatch.setattr(rv, "splits_across_record", lambda *a: False)
+    split, m_split = scene_slice("comb", 4, 0.0, 0.0, 0)
+    share_held = slot_covered(held, loops, 17.35, eps, eps / 2)
+    share_split = slot_covered(split, loops, 17.35, eps, eps / 2)
+    assert share_held >= 0.95 and share_split < 0.8, (share_held, share_split)
+    assert m_held["coverage_sensor"] > m_split["coverage_sensor"] + 0.02
+    assert m_held["precision_sensor"] >= 0.99 and m_held["w3_unsound_count_sensor"] == 0
 
 
 def test_in_reach_is_still_the_revisit_name():

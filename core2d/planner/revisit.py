@@ -31,7 +31,7 @@ the robot's own map (:class:`~core2d.planner.known.KnownContour`):
    L_{A0}^{B0} cap G_i cap V_i): the probe is inserted along it from F. A
    new contact C (farther than eps/2 from A_i and B_i and than 2 tol from
    everything recorded, and behind the lid or near it: :func:`in_reach`;
-   under a coarse noisy sensor a contact met in front of the lid whose
+   with perfect sensing or a coarse noisy sensor a contact met in front of the lid whose
    children's lids would cross recorded contour is held back while a
    spread's worth more passes look for C_A^B:
    :func:`~core2d.planner.pass_contacts.splits_across_record`;

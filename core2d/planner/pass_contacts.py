@@ -6,7 +6,8 @@ A_iB_i. A new contact C splits the area into (A_i, C) and (C, B_i): the
 paper's flow takes C to lie on C_A^B. But the record has gaps -- walls not yet
 explored, and with a noisy sensor the gaps a noisy trace leaves -- and a pass can
 stop on another wall the probe reaches from F through such a gap, in front of
-the lid. Splitting there lays the children's lids across material. Two tests keep such contacts out, or hold them back:
+the lid. Splitting there lays the children's lids across material. Two tests
+keep such contacts out, or hold them back:
 
 * :func:`in_reach`, with a noisy sensor: the contact is behind the lid (the
   probe's segment from the joint to it crosses A_iB_i), or within
@@ -77,8 +78,8 @@ def splits_across_record(res: Resolution, known: KnownContour, area, joint, poin
     """Would splitting A_iB_i at a pass's contact ``point``, met in front of
     the lid, lay a child's lid across recorded contour?
 
-    True when the sensor is perfect or does not resolve eps/2, the probe's segment from
-    ``joint`` to ``point`` does not cross the lid, and the chord A_iC or CB_i
+    True when the sensor is perfect or does not resolve eps/2, the probe's segment
+    from ``joint`` to ``point`` does not cross the lid, and the chord A_iC or CB_i
     crosses a recorded segment farther than ``near`` (2 tol + jitter) from both
     of its ends. Within ``near`` of an end the crossing is that end's own
     wall: A_i and B_i are readings scattered by the jitter about the pieces
@@ -131,7 +132,7 @@ def splits_across_record(res: Resolution, known: KnownContour, area, joint, poin
     area : Area-like with ``a``, ``b`` (2,) float.
     joint, point : (2,) float -- the probe's joint and its contact C.
     """
-    if resolves_half_eps(res):  # a fine sensor: as the paper's flow
+    if resolves_half_eps(res):  # a fine sensor: the hold cost more than it gained
         return False
     a, b = np.asarray(area.a, float), np.asarray(area.b, float)
     q = np.asarray(point, float)

@@ -126,7 +126,9 @@ def test_the_comb_scenes_slot_under_a_hop_or_a_lid_is_covered(z, seed):
       enter the slot, whose contour they trace or approximate (the break at an end is
       tested above and on the ``comb`` outline below).
 
-    The scene's slots narrower than eps keep it below the target (noiseless z7 0.916)."""
+    The bound on the slice's coverage is the one it met while the slot 0.32 eps wide that
+    the trace steps over was recorded as traced (noiseless z7 0.916); read as a Case 2 jump
+    since (:func:`core2d.sim.compliance.overhangs`), noiselessly z7 covers 0.998."""
     import meshes
     import slicer
     from noisy_runs import scene_slice, slot_covered

@@ -83,11 +83,14 @@ def test_an_orphan_the_record_reached_or_a_run_past_its_rounds_seeks_nothing():
 
 
 def test_an_island_met_once_far_from_the_record_is_traced(shared_meshes_dir, monkeypatch):
-    """``vtk_42400-IDGH``, z-plane 2 of 5, sigma 0.1 eps, sensor seed 2 (the unseen study's
-    draws): a square island 2.5 eps wide, 14 eps from every other object, which the first
-    bootstrap passed by. A revisit pass met it 31 eps in front of a lid 24 eps long
-    (``in_reach`` refuses it: more often a wall met through a gap in a noisy record), and
-    it was never touched again: 0.974. Bootstrapped again, aimed at it, it is traced."""
+    """``vtk_42400-IDGH``, z-plane 2 of 5, sigma 0.1 eps, sensor seed 4002: a square island
+    2.5 eps wide, 14 eps from every other object, which the first bootstrap passed by. A
+    revisit pass met it 31 eps in front of a lid 24 eps long (``in_reach`` refuses it: more
+    often a wall met through a gap in a noisy record), and it was never touched again:
+    0.974. Bootstrapped again, aimed at it, it is traced. (The case was seed 2, the unseen
+    study's draws, until the trace's controller read a probe's end hanging in a slot as a
+    jump, :func:`core2d.sim.compliance.overhangs`: its runs part earlier since, and with
+    seed 2 the island is reached without the second bootstrap.)"""
     import core2d.planner.run as run_module
     from core2d import sense_slice
     from core2d.resolution import repeated_reads
@@ -97,7 +100,7 @@ def test_an_island_met_once_far_from_the_record_is_traced(shared_meshes_dir, mon
     cut, eps, ws, loops = mesh_slice(shared_meshes_dir / "vtk_42400-IDGH.stl", 2, count=5)
 
     def run():
-        sensor = SensorModel.of_eps(eps, 0.1, 0.0, 2, reads=repeated_reads(1.0, 0.1, 0.0))
+        sensor = SensorModel.of_eps(eps, 0.1, 0.0, 4002, reads=repeated_reads(1.0, 0.1, 0.0))
         res = sense_slice(cut.contact("embree"), ws, eps, max_motions=20000, sensor=sensor)
         return res, sensor_metrics(loops, res, eps, sensor.noise)
 

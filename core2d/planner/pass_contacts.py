@@ -115,8 +115,8 @@ def splits_across_record(res: Resolution, known: KnownContour, area, joint, poin
     the teeth between, their passes went elsewhere, and the right wall (84 eps) was
     covered by nothing: 0.875 - 0.876 of the reachable contour noiselessly. Held, the
     next passes come down the slot and reach it: 0.915 - 0.916 on all eight slices
-    (motions -3 to +15 %; the slots narrower than eps/2 that a trace steps over keep
-    the rest). Elsewhere, noiselessly: 110 of the 120 slices of the 15 built-in scenes
+    (motions -3 to +15 %; the slot narrower than eps/2 that the trace stepped over kept
+    the rest, since closed by a W2 chord: :func:`core2d.sim.compliance.overhangs`). Elsewhere, noiselessly: 110 of the 120 slices of the 15 built-in scenes
     and 58 of 64 of the eight real meshes in ``../shared/meshes`` the same (the others
     the same coverage, motions -2.3 to +1.1 %); 132 of 144 outlines of
     ``tests/outlines.py`` (seeds 0 - 23) the same, coverage up on three (``undercut-20``

@@ -8,6 +8,13 @@ torque until it touches, or yields against the torque when the step pressed
 it into the surface. A step whose contact point moves discontinuously is
 halved until either the motion is continuous again or the step is below
 ``tol``: then it is a real contact point jump (Case 2) and the motion stops.
+A contact that moved less than the same-point radius (eps / 2) is still a
+jump when it left the probe's end for its body with the end hanging into
+the contour it passed (:func:`overhangs`: a slot narrower than eps / 2
+stepped over, the body on its far corner), unless the end still touches
+contour (its tip ray) within ``near`` (2 tol) of the body's contact: the
+two are then one contact at the sensor's resolution, the end in the apex
+of a concave corner that the step cut.
 The controller also stops when the probe loses every contact (Case 2-3),
 when v.t > 0 is detected (Case 3, if guarded), when the joint cannot move
 along v (Case 4; with tip friction, also a pushing step inside the friction
@@ -26,7 +33,7 @@ from core2d.readings import TIP
 from core2d.sim.codes import Settle, TraceEvent
 from core2d.sim.friction import self_locked
 
-__all__ = ["compliant_trace", "python_steps", "settle_plan", "MAX_SETTLE"]
+__all__ = ["compliant_trace", "python_steps", "overhangs", "settle_plan", "MAX_SETTLE"]
 
 MAX_SETTLE = np.pi / 3  # largest swing the torque may cause in one step
 _MAX_YIELD = np.pi / 6
@@ -171,6 +178,14 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
         else:
             disp = math.inf
         continuous = disp <= jump
+        if continuous:
+            c2, s2 = math.cos(theta), math.sin(theta)
+            tx, ty = float(joint[0]) + L * c2, float(joint[1]) + L * s2  # the probe's end
+            if overhangs(float(o[0]), float(o[1]), float(q[0]), float(q[1]), tx, ty,
+                         float(joint[0]), float(joint[1]), dmin) and (
+                    math.hypot(tx - float(q[0]), ty - float(q[1])) > near
+                    or _end_free(engine, tx, ty, c2, s2, res.tol)):
+                continuous = False  # the contact jumped from the end onto the body: Case 2
         if not continuous:
             # A jump keeps a finite gap as the step shrinks; a fast continuous
             # slide (probe near-normal to the surface) shrinks with the step.
@@ -212,6 +227,62 @@ def python_steps(probe, v, rot_dir, delta0, max_dist, max_steps, guard_push, las
         trace.append(contact.point)
         step = min(delta0, 2 * step)
     return event, trace, before, primary
+
+
+def _end_free(engine, tx, ty, c, s, tol) -> bool:
+    """Does the probe's end (tx, ty) touch nothing? Its tip ray, as a reading
+    casts it (from the end along the probe (c, s), up to tol), hits nothing."""
+    d, _ = engine.cast(np.array([[tx, ty]]), np.array([[c, s]]), tol)
+    return bool(d[0] == np.inf)
+
+
+def overhangs(ox, oy, qx, qy, tx, ty, jx, jy, depth) -> bool:
+    """Does the probe's end (tx, ty), after a step of its contact from o to
+    q, hang in a gap between them? (scalars; the kernels compile it as is)
+
+    A contact within the tip zone (eps / 2 of the end) is the tip's, and a
+    contact that moves less than that in one micro-step is continuous: so a
+    probe leaning over a slot narrower than eps / 2 steps from the slot's
+    near corner onto its far corner, its body resting there and its end
+    inside the slot (the ``comb`` scene: a slot 0.32 eps wide between two
+    teeth whose tops are one line, stepped over in one move of 0.43 eps; the
+    end 0.04 - 0.06 eps deep). The end slid on nothing; the contact point
+    left the end for the body, a jump (Case 2 of §4.3.2), and the stretch
+    (P_1st, P_2nd) is the slot's mouth, registered by the rule of §4.3.3 (W2
+    at once, Dist < eps). Recorded as a slide instead, the slot's walls were
+    traced contour that the tip never met.
+
+    The end hangs in a gap when it lies behind the chord o q (away from the
+    joint (jx, jy)) by more than ``depth`` -- the trace's stop_short, tol / 2:
+    the settle's resolution at the end -- and between o and q along it. Over a
+    convex corner the end lies beyond q, over a face on the chord (within the
+    resolution), and a contact at the very end is q itself. The controller
+    asks one thing more (:func:`python_steps`, the kernels alike): that the
+    end lies farther than ``near`` (2 tol) from q or touches nothing (its tip
+    ray). In the apex of a concave corner the step cut, the end touches the
+    corner and the body the other face a hair away (``numerics`` seed 0,
+    sensor seed 3000 at sigma 0.3 eps, taxels 0.25 eps: 0.066 eps): one
+    contact at the sensor's resolution, no jump. Where the end touches the
+    slot's near wall (a probe leaning 20 degrees over a slot 0.3 eps wide, the
+    end 0.29 eps from the body's contact on the far corner) the contact still
+    jumped across the slot.
+
+    Examples
+    --------
+    >>> overhangs(0, 0, 1, 0, 0.5, -0.1, 3, 5, 0.02)  # the end in the gap
+    True
+    >>> overhangs(0, 0, 1, 0, 1.2, -0.5, 3, 5, 0.02)  # past a convex corner
+    False
+    """
+    ex, ey = qx - ox, qy - oy
+    den = ex * ex + ey * ey
+    toward = ex * (jy - oy) - ey * (jx - ox)
+    if den == 0 or toward == 0:
+        return False
+    s = ((tx - ox) * ex + (ty - oy) * ey) / den
+    side = (ex * (ty - oy) - ey * (tx - ox)) / math.sqrt(den)
+    side = side if toward > 0 else -side  # > 0: on the joint's (free) side
+    return 0.0 < s < 1.0 and side < -depth
 
 
 def settle_plan(engine):

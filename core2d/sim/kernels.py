@@ -45,9 +45,11 @@ from numba.extending import intrinsic
 
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.codes import Settle, TraceEvent
+from core2d.sim.compliance import overhangs
 from core2d.sim.friction import self_locked
 
 _self_locked = numba.njit(cache=True, nogil=True)(self_locked)  # the Python engine's test
+_overhangs = numba.njit(cache=True, nogil=True)(overhangs)  # the Python engine's test
 
 __all__ = ["cast", "sense_rays", "search", "search_from", "settle", "trace_steps"]
 
@@ -308,6 +310,7 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
     has_stop, sx, sy = marks[3] > 0, marks[4], marks[5]
     leave_far, ex, ey = marks[6] > 0, marks[7], marks[8]
     trace = np.empty((64, 2))
+    tip_ray = np.empty(3)
     nt = 0
     if has_last:
         trace[0, 0], trace[0, 1] = lx, ly
@@ -339,6 +342,17 @@ def trace_steps(fn, ctx, pose, motion, marks, plan, par, work, count):
         sliding = status == Settle.OK and L - d <= tip_zone and has_last
         disp = math.hypot(qx - lx, qy - ly) if sliding else np.inf
         continuous = disp <= jump
+        if continuous:
+            c2, s2 = math.cos(nth), math.sin(nth)
+            tx, ty = njx + L * c2, njy + L * s2  # the probe's end
+            if _overhangs(lx, ly, qx, qy, tx, ty, njx, njy, dmin):
+                free = math.hypot(tx - qx, ty - qy) > near
+                if not free:  # the end's tip ray, as a reading casts it (one cast)
+                    _call(fn, ctx, tx, ty, c2, s2, 2 * dmin, tip_ray.ctypes.data)
+                    count[0] += 1
+                    count[1] += 1
+                    free = tip_ray[0] == np.inf
+                continuous = not free  # free: the contact jumped from the end onto the body
         if not continuous:
             shrinking = sliding and (not has_prev or disp < 0.75 * prev_disp)
             if (h > dmin or shrinking) and h > dmin / 1024:

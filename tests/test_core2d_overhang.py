@@ -65,9 +65,10 @@ def test_a_slot_under_the_tip_zone_is_a_case_2_jump(lean):
         lines, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, True,
                                           lambda: True)
         got.append((cases, [np.asarray(pl).tolist() for pl in lines],
-                    [(k.rule, k.a.tolist(), k.b.tolist()) for k in new]))
+                    [(k.rule, k.a.tolist(), k.b.tolist()) for k in new],
+                    probe.stats.casts, probe.stats.joint_path))
     assert got[0] == got[1]
-    cases, lines, new = got[0]
+    cases, lines, new, _, _ = got[0]
     assert "case2-1" in cases
     (rule, p1st, p2nd), = [k for k in new if k[0] == "case2-1"]
     tol = probe.tol

@@ -116,10 +116,11 @@ def splits_across_record(res: Resolution, known: KnownContour, area, joint, poin
     covered by nothing: 0.875 - 0.876 of the reachable contour noiselessly. Held, the
     next passes come down the slot and reach it: 0.915 - 0.916 on all eight slices
     (motions -3 to +15 %; the slot narrower than eps/2 that the trace stepped over kept
-    the rest, since closed by a W2 chord: :func:`core2d.sim.compliance.overhangs`). Elsewhere, noiselessly: 110 of the 120 slices of the 15 built-in scenes
-    and 58 of 64 of the eight real meshes in ``../shared/meshes`` the same (the others
-    the same coverage, motions -2.3 to +1.1 %); 132 of 144 outlines of
-    ``tests/outlines.py`` (seeds 0 - 23) the same, coverage up on three (``undercut-20``
+    the rest, since closed by a W2 chord: :func:`core2d.sim.compliance.overhangs`).
+    Elsewhere, noiselessly: 110 of the 120 slices of the 15 built-in scenes and 58 of 64
+    of the eight real meshes in ``../shared/meshes`` the same (the others the same
+    coverage, motions -2.3 to +1.1 %); 132 of 144 outlines of ``tests/outlines.py``
+    (seeds 0 - 23) the same, coverage up on three (``undercut-20``
     0.9954 -> 0.9992, ``undercut-15`` 0.9982 -> 1.0, ``comb-10`` 0.9964 -> 0.9974),
     down on one (``islands-8`` 0.9995 -> 0.9990, 8 % more motions).
 

@@ -15,8 +15,8 @@ and so is a hop of the tip over a gap the controller took as continuous
 (:func:`core2d.planner.hops.split_hops`: the mouth of a slender wedge is not
 traced contour; where the probe's end hangs in a slot narrower than eps / 2 that
 it stepped over, the controller itself reports the jump:
-:func:`core2d.sim.compliance.overhangs`). Case 1 is the tip reaching P_fin along the contour: a P_fin
-the controller's radius (eps/2) reports across a wall thinner than that -- a
+:func:`core2d.sim.compliance.overhangs`). Case 1 is the tip reaching P_fin along
+the contour: a P_fin the controller's radius (eps/2) reports across a wall thinner than that -- a
 needle's far face -- is slid on past (:func:`core2d.planner.hops.across_wall`):
 one trace without P_fin as long as the same-point radius on both sides (2 tip_zone:
 eps with perfect sensing, so the tip ends outside the radius round P_fin), then the

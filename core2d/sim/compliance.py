@@ -249,7 +249,7 @@ def overhangs(ox, oy, qx, qy, tx, ty, jx, jy, depth) -> bool:
     end 0.04 - 0.06 eps deep). The end slid on nothing; the contact point
     left the end for the body, a jump (Case 2 of §4.3.2), and the stretch
     (P_1st, P_2nd) is the slot's mouth, registered by the rule of §4.3.3 (W2
-    at once, Dist < eps). Recorded as a slide instead, the slot's walls were
+    at once, Dist < eps). Recorded as a slide, the slot's mouth would be
     traced contour that the tip never met.
 
     The end hangs in a gap when it lies behind the chord o q (away from the

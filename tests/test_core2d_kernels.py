@@ -145,6 +145,30 @@ def _extruded_contact(loops):
     return EmbreeContact(mesh, plane)
 
 
+def trace_constructed(model, at, direction, a, b, toward_b=True, length=None,
+                      pose_b=(0.0, -1.0)):
+    """One trace of the planner on a constructed slice (eps = 1): the probe placed touching
+    ``at`` along ``direction``, the area from A = ``a`` to B = ``b`` (A's posture pointing
+    down, B's along ``pose_b``), traced towards B or A (:func:`trace_side`, Theorem 4's
+    local result from the placed reading). Returns ``(probe, lines, new areas, cases)``."""
+    from figure_scenes import WORKSPACE, place, pose_to
+
+    from core2d.planner.areas import Area
+    from core2d.planner.local_search import LocalResult, definition5
+    from core2d.planner.regions import G_region
+    from core2d.planner.tracing import trace_side
+
+    probe = Probe(model, WORKSPACE, 1.0, length=length)
+    r = place(probe, at, np.asarray(direction, float) / np.linalg.norm(direction))
+    area = Area(np.asarray(a, float), np.asarray(b, float),
+                pose_to(probe, a, np.array([0.0, -1.0])), pose_to(probe, b, np.asarray(pose_b)))
+    local = LocalResult(r, r.tip_contact.point, *definition5(r), 0)
+    G = G_region(area.a, area.b, area.pose_a, area.pose_b)
+    lines, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, toward_b,
+                                      lambda: True)
+    return probe, lines, new, cases
+
+
 # The constructed trace events of tests/test_core2d_cases.py, each met on purpose.
 _EVENTS = {
     "case2-3": ([(0, 60), (100, 60)], (50, 60), (-1, -1), (10, 60), (100, 30), None, True,
@@ -165,27 +189,15 @@ def test_kernels_meet_each_trace_event_as_the_python_path(case):
     guard, Case 4, the trace passing the other end) on a constructed slice
     through the Embree backend: the compiled and the Python path record the
     same event, trace, new areas and counters."""
-    from figure_scenes import WORKSPACE, block, place, pose_to
-
-    from core2d.planner.areas import Area
-    from core2d.planner.local_search import LocalResult, definition5
-    from core2d.planner.regions import G_region
-    from core2d.planner.tracing import trace_side
+    from figure_scenes import block
 
     top, at, direction, a, b, length, toward_b, kw = _EVENTS[case]
     contact = _extruded_contact(block(top))
     assert contact.ray_kernel is not None
     got = []
     for model in (contact, _PythonPath(contact)):
-        probe = Probe(model, WORKSPACE, 1.0, length=length)
-        r = place(probe, at, np.asarray(direction, float) / np.linalg.norm(direction))
-        down = np.array([0.0, -1.0])
-        area = Area(np.asarray(a, float), np.asarray(b, float), pose_to(probe, a, down),
-                    pose_to(probe, b, kw.get("pose_b", down)))
-        local = LocalResult(r, r.tip_contact.point, *definition5(r), 0)
-        G = G_region(area.a, area.b, area.pose_a, area.pose_b)
-        lines, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, toward_b,
-                                          lambda: True)
+        probe, lines, new, cases = trace_constructed(model, at, direction, a, b, toward_b,
+                                                     length, kw.get("pose_b", (0.0, -1.0)))
         got.append((cases, [np.asarray(pl).tolist() for pl in lines],
                     [(k.rule, k.a.tolist(), k.b.tolist()) for k in new],
                     probe.joint.tolist(), float(probe.theta),

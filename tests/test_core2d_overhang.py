@@ -40,30 +40,17 @@ def test_a_slot_under_the_tip_zone_is_a_case_2_jump(lean):
     the Python path and the compiled kernels agree. Before the rule the trace
     slid on over the slot as one polyline (Case 1 only), the slot recorded as
     traced contour."""
-    from figure_scenes import WORKSPACE, block, place, pose_to
-    from test_core2d_kernels import _extruded_contact, _PythonPath
-
-    from core2d.planner.areas import Area
-    from core2d.planner.local_search import LocalResult, definition5
-    from core2d.planner.regions import G_region
-    from core2d.planner.tracing import trace_side
-    from core2d.sim.probe import Probe
+    from figure_scenes import block
+    from test_core2d_kernels import _extruded_contact, _PythonPath, trace_constructed
 
     near, far = (50.0, 60.0), (50.3, 60.0)
     top = [(0, 60), near, (50, 40), (50.3, 40), far, (100, 60)]
-    a, b = np.array((5.0, 60.0)), np.array((95.0, 60.0))
     contact = _extruded_contact(block(top))
     lean = np.radians(lean)
     got = []
     for model in (contact, _PythonPath(contact)):
-        probe = Probe(model, WORKSPACE, 1.0)
-        r = place(probe, (45.0, 60.0), np.array((-np.cos(lean), -np.sin(lean))))
-        down = np.array([0.0, -1.0])
-        area = Area(a, b, pose_to(probe, a, down), pose_to(probe, b, down))
-        local = LocalResult(r, r.tip_contact.point, *definition5(r), 0)
-        G = G_region(area.a, area.b, area.pose_a, area.pose_b)
-        lines, new, cases, _ = trace_side(probe, area, G, r.joint.copy(), local, True,
-                                          lambda: True)
+        probe, lines, new, cases = trace_constructed(
+            model, (45.0, 60.0), (-np.cos(lean), -np.sin(lean)), (5.0, 60.0), (95.0, 60.0))
         got.append((cases, [np.asarray(pl).tolist() for pl in lines],
                     [(k.rule, k.a.tolist(), k.b.tolist()) for k in new],
                     probe.stats.casts, probe.stats.joint_path))

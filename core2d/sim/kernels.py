@@ -45,11 +45,14 @@ from numba.extending import intrinsic
 
 from core2d.sim.codes import WINDOWS as _WINDOWS
 from core2d.sim.codes import Settle, TraceEvent
+from core2d.sim.compliance import _distance_xy as distance_xy
 from core2d.sim.compliance import overhangs
 from core2d.sim.friction import self_locked
 
-_self_locked = numba.njit(cache=True, nogil=True)(self_locked)  # the Python engine's test
-_overhangs = numba.njit(cache=True, nogil=True)(overhangs)  # the Python engine's test
+# the Python engine's scalar functions, compiled as they are (both engines decide alike)
+_self_locked = numba.njit(cache=True, nogil=True)(self_locked)
+_overhangs = numba.njit(cache=True, nogil=True)(overhangs)
+_distance_xy = numba.njit(cache=True, nogil=True)(distance_xy)
 
 __all__ = ["cast", "sense_rays", "search", "search_from", "settle", "trace_steps"]
 
@@ -277,14 +280,6 @@ def settle(fn, ctx, jx, jy, theta, rot_dir, plan, par, work, count):
             return Settle.LOST, theta + rot_dir * max_a, np.inf, np.nan, np.nan
         return Settle.JAMMED, theta, np.inf, np.nan, np.nan
     return Settle.OK, a, d, x, y
-
-
-@numba.njit(cache=True, nogil=True)
-def _distance_xy(px, py, ax, ay, abx, aby):  # pragma: no cover - compiled
-    """``compliance._distance_xy``: from (px, py) to the segment (ax, ay) + [0, 1] ab."""
-    den = abx * abx + aby * aby
-    s = 0.0 if den == 0 else min(1.0, max(0.0, ((px - ax) * abx + (py - ay) * aby) / den))
-    return math.hypot(ax + s * abx - px, ay + s * aby - py)
 
 
 @numba.njit(cache=True, nogil=True)

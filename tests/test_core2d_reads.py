@@ -213,16 +213,19 @@ def test_reads_aimed_at_half_tol_enter_the_slot_one_read_leaves():
     """The ``comb`` scene's z-slice 0 of 8 at sigma 0.1 eps, keyed sensor seed 0 (the sensor
     study's first repeat). Read once -- the fewest reads that resolve eps/2, what ``--reads
     auto`` took before it aimed at tol / 2 -- the bisection at the corner of the tooth beside
-    the slot 2.5 eps wide slips past that corner (jitter 0.42 eps), and the slot is entered
-    only near its mouth: 0.903 of the part eps resolves. With the 16 reads ``repeated_reads``
-    takes (the means' sigma 0.025 eps = tol / 2) it is traced: 0.998. One slice's figure is a
-    lottery either way (z3 with seed 3 goes 0.988 -> 0.912); over the 8-slice study's 1,140
-    slice runs at this level 196 went up and 32 down (docs/notes/noise.md)."""
+    the slot 2.5 eps wide slips past that corner (jitter 0.42 eps), and the slot's walls are
+    found late and in part: 0.982 of the part eps resolves, under this level's 0.99 target
+    (0.903 before the Fill went on past a gap out of reach, core2d.planner.touched). With the
+    16 reads ``repeated_reads`` takes (the means' sigma 0.025 eps = tol / 2): 0.997. On
+    z-slices 0 - 7 with seeds 0 - 7 and 0 - 3 with 1000 - 1003, one read gives 0.952 - 0.998
+    (10 of 12 under 0.99), 16 reads 0.998 - 1.000. One slice's figure is a lottery either
+    way; over the 8-slice study's 1,140 slice runs at this level 196 went up and 32 down
+    (docs/notes/noise.md)."""
     from noisy_runs import scene_slice
 
     n = repeated_reads(1.0, 0.1)
     assert n == 16
     _, one = scene_slice("comb", 0, 0.1, 0.0, 0, keyed=True, reads=1)
     _, aimed = scene_slice("comb", 0, 0.1, 0.0, 0, keyed=True, reads=n)
-    assert one["coverage_resolvable_sensor"] < 0.95
+    assert one["coverage_resolvable_sensor"] < 0.99, one["coverage_resolvable_sensor"]
     assert aimed["coverage_resolvable_sensor"] >= 0.99

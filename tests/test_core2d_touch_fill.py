@@ -221,6 +221,18 @@ def test_a_gap_the_landings_cannot_reach_gets_the_spread_pass_inside_it():
     assert Fill(*_touched_lid(), 10).next() is None  # no free lines given
 
 
+def test_a_gap_out_of_reach_gives_way_to_the_next_widest():
+    """The widest gap has no landing series and no free sample inside it (a lid laid
+    under a tooth's recorded top, its only free samples over a slot's mouth beside it):
+    the Fill aims into the next widest gap instead of stopping."""
+    t, aim = _touched_lid()
+    fill = Fill(t, aim, 10, _Lines([0.1], 12.0))  # free only in (0.0, 0.25)
+    point, _, shift = fill.next()
+    assert shift is None and point[0] == pytest.approx(0.1 * 12.0)
+    assert fill.tried[touched.gap_key(0.35, 1.0)] == touched.TRIED  # out of reach
+    assert fill.next() is None  # the one free sample is taken
+
+
 def test_a_lid_takes_a_spread_s_worth_of_such_passes():
     """Passes that never narrow the gaps (they land far behind the lid, as on a lid
     across a cavity) stop after :data:`~core2d.planner.pass_plan.MAX_TRIES` free-sample
@@ -260,4 +272,30 @@ def test_a_slot_beside_a_tooth_is_entered_through_the_lid_across_both():
     m = sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
                        resolved=resolved)  # 0.896 without the Fill's free-sample pass (tried)
     assert m["coverage_resolvable_sensor"] >= 0.98, m["coverage_resolvable_sensor"]
+    assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0
+
+
+def test_a_slot_s_mouth_beside_a_recorded_tooth_top_is_entered():
+    """The ``comb`` scene's z-slice 2 of 5 at sigma 0.1 eps averaged over 16 reads (as
+    ``recon3d run``), sensor seed 1002: a lid from a tooth's far corner to the slot's
+    wall 2.5 eps wide beside it lies just under the tooth's recorded top, so its only
+    free samples lie over the tooth's unrecorded stretches and the slot's mouth. The
+    widest gap between the passes' touches (the tooth's top) cannot be aimed at; the
+    Fill's pass into the next widest gap, the mouth, enters the slot (84 eps deep)."""
+    from noisy_runs import mesh_slice
+
+    from core2d import SensorModel, sense_slice
+    from core2d.truth.metrics import sensor_metrics
+    from core2d.truth.reachability import reachable_samples
+    from core2d.truth.resolvable import resolvable
+
+    cut, eps, ws, loops = mesh_slice("comb", 2, count=5)
+    samples = reachable_samples(loops, eps / 4)
+    resolved = resolvable(loops, samples[0].points, eps)
+
+    sensor = SensorModel.of_eps(eps, 0.1, 0.0, 1002, reads=16)
+    res = sense_slice(cut.contact("embree"), ws, eps, sensor=sensor)
+    m = sensor_metrics(loops, res, eps, sensor.noise, spacing=eps / 4, samples=samples,
+                       resolved=resolved)  # 0.899 when the Fill stops at the widest gap
+    assert m["coverage_resolvable_sensor"] >= 0.99, m["coverage_resolvable_sensor"]
     assert m["precision_sensor"] >= 0.98 and m["w3_unsound_count_sensor"] == 0

@@ -193,8 +193,8 @@ class Fill:
     are spent the robot aims one at the middle of the widest gap between neighbouring
     touches (A_i and B_i included), from its own landings (:meth:`Aim.toward
     <core2d.planner.reaim.Aim.toward>`), until every neighbour lies within the W2
-    distance (:meth:`Touches.closes`: W2 along them), a gap was aimed at twice, the
-    widest gap is out of the landings' reach, or ``cap`` passes are made. Where it was
+    distance (:meth:`Touches.closes`: W2 along them), every gap was aimed at twice or is
+    out of reach (below), or ``cap`` passes are made. Where it was
     read: the ``comb`` outline seed 1 at sigma 0.1 eps, a lid 5.7 eps down the wall of
     a slot 1.45 eps wide, 9 planned passes touching it at 0.23, 0.48 - 0.50 and 0.98 of
     its length; three passes aimed at 0.74, 0.86 and 0.36 landed at 0.73, 0.86 and

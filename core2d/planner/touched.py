@@ -272,7 +272,7 @@ class Fill:
         t = self.touches
         if self.spent >= self.cap or not t.middle_touched() or t.closes():
             return None
-        while (gap := t.widest_untried(self.tried, TRIED)) is not None:
+        while (gap := t.widest_untried(self.tried)) is not None:
             again = self._aimed(gap)
             if again is not None:
                 break

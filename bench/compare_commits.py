@@ -17,6 +17,7 @@ Usage (repository root, project venv)::
 
     python -m bench.compare_commits ec29520 HEAD
     python -m bench.compare_commits ec29520 HEAD --cases fig18_overhangs,gear --jobs 2
+    python -m bench.compare_commits ec29520 WORKTREE --flags="--backend exact" --ignore rays
 
 ``AFTER`` may be ``WORKTREE``: the files of this checkout as they are,
 uncommitted changes included. Exit status 1 when any case differs or fails.
@@ -26,6 +27,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shlex
 import subprocess
 import sys
 import tarfile
@@ -158,19 +160,23 @@ def main(argv=None) -> int:
     ap.add_argument("--ignore", default="",
                     help="comma-separated keys left out of the comparison at any depth, "
                          "e.g. rays (a change that casts fewer rays for the same results)")
+    ap.add_argument("--flags", default="",
+                    help="run flags added to every case, e.g. --flags='--backend exact'")
     args = ap.parse_args(argv)
+    more = shlex.split(args.flags)
     ignore = [k for k in args.ignore.split(",") if k]
-    out = Path(args.out)
+    out = Path(args.out).resolve()  # the runs start in their own trees
     trees = [export(c, out) for c in (args.before, args.after)]
     todo = cases(args.cases)
-    print(f"before {trees[0][0]}  after {trees[1][0]}  {len(todo)} cases, --jobs {args.jobs}")
+    print(f"before {trees[0][0]}  after {trees[1][0]}  {len(todo)} cases, --jobs {args.jobs}"
+          + (f", with {args.flags}" if more else ""))
     print(f"{'case':28s} {'before s':>9s} {'after s':>9s}  result")
     bad = 0
     for name, (source, flags) in todo.items():
         walls, errors, dirs = [], [], []
         for short, src in trees:
             dest = out / short / name
-            wall, err = run_case(src, source, flags, dest, args.jobs)
+            wall, err = run_case(src, source, [*flags, *more], dest, args.jobs)
             walls.append(wall)
             errors.append(err)
             dirs.append(dest)

@@ -60,7 +60,7 @@ def test_the_workers_do_not_wait_for_the_scores_compile(tmp_path, monkeypatch):
         time.sleep(4.0)
         flag.write_text("done")
 
-    monkeypatch.setattr(pool, "cold_kernels", lambda: True)
+    monkeypatch.setattr(pool, "cold_kernels", lambda *backend: True)
     monkeypatch.setattr(pool, "compile_scores", slow_compile)
     # an earlier test of this process may have rendered (OpenGL mapped: no side process);
     # this child only sleeps

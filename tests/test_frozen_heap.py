@@ -54,7 +54,7 @@ def test_sensing_runs_with_the_heap_frozen(monkeypatch, jobs):
         return srun
 
     monkeypatch.setattr(worker_mod.WorkerState, "sense", sense)
-    monkeypatch.setattr(pool, "cold_kernels", lambda: False)  # every slice in a worker
+    monkeypatch.setattr(pool, "cold_kernels", lambda *backend: False)  # every slice in a worker
     ring = trimesh.creation.annulus(r_min=1.0, r_max=2.0, height=1.0, sections=32)
     run = sense_mesh(ring, "ring", RunConfig(slices=4, jobs=jobs, eps=0.2))
     counts = [s.metrics["frozen_objects"] for s in run.families[0].slices]

@@ -22,13 +22,14 @@ def test_an_empty_numba_cache_means_every_kernel_is_cold_and_nothing_is_compiled
     code = ("import json, time; from recon3d.sensing import cold_kernels; "
             "from recon3d.sensing.kernels import sensing_kernels; t = time.perf_counter(); "
             "print(json.dumps([sorted(sensing_kernels()), cold_kernels(), "
-            "time.perf_counter() - t]))")
+            "time.perf_counter() - t, cold_kernels('exact')]))")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
                          text=True, check=True)
-    kernels, cold, seconds = json.loads(out.stdout)
+    kernels, cold, seconds, cold_exact = json.loads(out.stdout)
     assert "core2d.sim.kernels.search" in kernels and "core2d.visibility._order" in kernels
     assert sorted(cold) == kernels
+    assert "slicer.contact.exact._ray" in cold_exact and "core2d.sim.kernels.search" in cold_exact
     assert not list(tmp_path.rglob("*.nbi")) and not list(tmp_path.rglob("*.nbc"))
     assert seconds < 5  # the cache is read, not filled
 
@@ -48,12 +49,29 @@ def test_after_a_run_no_kernel_is_cold(one_run):
     assert cold_kernels() == []
 
 
+def test_each_backend_is_asked_about_its_own_ray_function(tmp_path):
+    """The exact backend runs the compiled engine on its own ray function: a run on it is
+    announced when its kernels are cold, and not after it compiled them; trimesh's backend
+    (the Python engine) is never announced."""
+    embree, exact = set(sensing_kernels()), set(sensing_kernels("exact"))
+    assert {"slicer.contact.exact._ray", "slicer.contact.exact._cast"} <= exact
+    assert "slicer.contact.exact._ray" not in embree
+    assert "slicer.contact.embree_direct._ray" not in exact
+    assert embree - exact <= {"slicer.contact.embree_direct._ray"}  # core2d's: the same
+    assert cold_kernels("trimesh") == []
+    out = tmp_path / "run"
+    assert main(["run", "fig17_pocket", "--out", str(out), "--slices", "2", "--jobs", "1",
+                 "--backend", "exact", "--no-png", "--quiet"]) == 0
+    assert cold_kernels("exact") == []
+
+
 @pytest.mark.parametrize("quiet", [False, True])
 def test_the_cli_prints_the_notice_once_when_cold_and_not_with_quiet(one_run, tmp_path,
                                                                      capsys, monkeypatch,
                                                                      quiet):
     # the run command imports it from the API when it runs (recon3d.cli.run._run)
-    monkeypatch.setattr(recon3d.api, "cold_kernels", lambda: ["core2d.sim.kernels.search"])
+    monkeypatch.setattr(recon3d.api, "cold_kernels",
+                        lambda *backend: ["core2d.sim.kernels.search"])
     args = ["run", "fig17_pocket", "--out", str(tmp_path / "o"), "--slices", "2",
             "--jobs", "1", "--no-png"] + (["--quiet"] if quiet else [])
     assert main(args) == 0

@@ -121,15 +121,18 @@ def test_a_signal_ignored_at_start_stays_ignored(tmp_path, sig):
     the background survives the terminal's Ctrl-C (SIGINT): the run ends as if not signalled."""
     out = tmp_path / "out"
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
-    proc = subprocess.Popen([sys.executable, "-m", "recon3d", "run", "comb", "--slices", "6",
+    # two of comb's slices, one per worker: a few seconds of sensing, when the signal comes
+    proc = subprocess.Popen([sys.executable, "-m", "recon3d", "run", "comb", "--slices", "2",
                              "--jobs", "2", "--no-png", "--quiet", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
                             start_new_session=True, preexec_fn=_ignoring(sig))
     workers = _wait_for_workers(proc)
     os.killpg(proc.pid, sig)
+    sensing = all(_alive(w) for w in workers)  # the signal reached the workers too
     code, _, err = _finish(proc)
     assert code == 0, err
     assert (out / "metrics.json").is_file()
+    assert sensing
     _assert_gone(workers)
 
 

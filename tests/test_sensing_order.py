@@ -46,7 +46,7 @@ def test_the_pool_hands_out_tasks_in_that_order(monkeypatch):
         return real(self, w, k, task)
 
     monkeypatch.setattr(pool._Workers, "send", recording)
-    monkeypatch.setattr(pool, "cold_kernels", lambda: False)  # no slice sensed in the parent
+    monkeypatch.setattr(pool, "cold_kernels", lambda *backend: False)  # no slice sensed in the parent
     config = RunConfig(slices=6, jobs=2, eps=0.2)
     run = sense_mesh(_funnel(), "funnel", config)
     cuts = [[s.slice for s in run.families[0].slices]]

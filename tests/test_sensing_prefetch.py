@@ -22,7 +22,7 @@ def test_the_next_slice_is_sent_before_the_reply_is_read(monkeypatch):
         return real_send(self, w, k, task)
 
     monkeypatch.setattr(pool._Workers, "send", recording)
-    monkeypatch.setattr(pool, "cold_kernels", lambda: False)  # no slice sensed in the parent
+    monkeypatch.setattr(pool, "cold_kernels", lambda *backend: False)  # no slice sensed in the parent
     run = sense_mesh(_ring(), "ring", RunConfig(slices=slices, jobs=jobs, eps=0.2))
     assert sorted(k for _, k, _ in sent) == list(range(slices))  # each slice sent once
     first, refills = sent[:jobs], sent[jobs:]

@@ -2,7 +2,7 @@
 
 :class:`CompiledEngine` runs the searches, the settles of a compliant trace
 and a reading's rays in compiled code (:mod:`core2d.sim.kernels`), calling
-the contact model's ray function (``ray_kernel``, the Embree backend) ray
+the contact model's ray function (``ray_kernel``: the Embree and exact backends) ray
 by ray: the rays of :class:`~core2d.sim.search.PythonEngine` up to the
 first hit of each window, the same answers and the same casts, without the
 Python between the rays. It shares the Python engine's ray plan (the offset windows, the settle

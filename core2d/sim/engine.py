@@ -4,7 +4,7 @@ Every ray the probe simulator casts goes through an :class:`Engine`, chosen
 once when the probe is built (:func:`make_engine`):
 
 * :class:`~core2d.sim.compiled.CompiledEngine` when the contact model
-  offers a ray function (``ray_kernel``, the Embree backend): the searches,
+  offers a ray function (``ray_kernel``: the Embree and exact backends): the searches,
   the settles and the micro-steps of a compliant trace run compiled
   (:mod:`core2d.sim.kernels`);
 * :class:`~core2d.sim.search.PythonEngine` otherwise: the same searches in
@@ -73,7 +73,7 @@ class Engine(Protocol):
 def make_engine(contact: ContactModel, stats: SenseStats, length: float,
                 resolution: Resolution) -> Engine:
     """The compiled engine when ``contact`` has a ray function, else the Python one."""
-    kernel = getattr(contact, "ray_kernel", None)  # optional (Embree backend)
+    kernel = getattr(contact, "ray_kernel", None)  # optional (the Embree and exact backends)
     if kernel is not None:
         return CompiledEngine(contact, stats, length, resolution, kernel)
     return PythonEngine(contact, stats, length, resolution)

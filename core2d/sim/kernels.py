@@ -20,7 +20,8 @@ rays, pushes, push attempts, jams -- incremented in place.
 A ray function is any C function ``ray(ctx, ox, oy, dx, dy, max_dist, out)``
 writing ``out[:3] = distance, x, y`` (``inf, nan, nan`` for a miss), given
 as the pair ``(address, ctx)`` by a contact model's ``ray_kernel`` (the
-Embree backend has one: :mod:`slicer.contact.embree_direct`). core2d never learns
+Embree backend has one, :mod:`slicer.contact.embree_direct`, and the exact backend,
+:mod:`slicer.contact.exact`). core2d never learns
 what is behind it: the same contract as ``cast``, one ray at a time.
 
 The kernels cast the rays of the Python path, window by window, in the same

@@ -13,7 +13,7 @@ counts the trace steps executed in sliding contact with v.t > 0,
 
 Every ray goes through the probe's ray engine (:mod:`core2d.sim.engine`),
 chosen once here: compiled when the contact model has a ray function
-(``ray_kernel``, the Embree backend), Python otherwise -- the same rays, the
+(``ray_kernel``: the Embree and exact backends), Python otherwise -- the same rays, the
 same answers, the same counts.
 """
 from __future__ import annotations

@@ -96,9 +96,9 @@ def _run(args, config, mesh, name, notes):
     for note in notes:
         warn(note)
     # the first run on a machine compiles about 10 s before its first slice, in the main
-    # process (recon3d.sensing.pool._compile_here; the kernels asked about are the default
-    # Embree backend's; other backends compile only some of them)
-    if not args.quiet and config.backend == "embree" and cold_kernels():
+    # process (recon3d.sensing.pool._compile_here; the kernels asked about are the
+    # backend's: Embree's or the exact backend's; trimesh's runs the Python engine)
+    if not args.quiet and cold_kernels(config.backend):
         print(COMPILE_NOTICE, file=sys.stderr, flush=True)
     per_axis = config.max_slices if config.slices == "auto" else config.slices
     total = per_axis * len(config.axes)

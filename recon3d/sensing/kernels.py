@@ -1,7 +1,9 @@
 """Are the compiled sensing kernels in numba's cache? (the first run on a machine compiles them).
 
 The sensing runs numba kernels compiled with ``cache=True``: core2d's ray engine, planner
-and visibility, and the Embree ray function of :mod:`slicer.contact.embree_direct`. The
+and visibility, and the backend's ray function (Embree's of
+:mod:`slicer.contact.embree_direct`, or the exact backend's of :mod:`slicer.contact.exact`
+with its batched cast). The
 first run on a machine (or after their source changed) compiles them, about 10 s before
 the first slice, so ``recon3d run`` says so first (:func:`cold_kernels`; the library
 itself prints nothing).
@@ -25,9 +27,10 @@ cached: the file's kernels share its stamp, so one cached kernel says the file h
 changed since the runs that compiled what they needed (:func:`cold_among`). The price: a
 run that first needs such a kernel compiles it (one small kernel) without the notice.
 
-Kernels of other paths (``slicer.contact.refine``, used by the batched Embree path and
-the exact backend) are not asked about: they are small, and a default run never compiles
-them, so asking would announce a compile on every run.
+Kernels of other paths (``slicer.contact.refine``, used by the batched Embree path) are not
+asked about: they are small, and a default run never compiles them, so asking would
+announce a compile on every run. The trimesh backend has no ray function (the Python
+engine) and is not asked about.
 """
 from __future__ import annotations
 
@@ -41,7 +44,7 @@ import numba
 from numba.core.caching import FunctionCache
 from numba.core.dispatcher import Dispatcher
 
-from slicer.contact import embree_direct
+from slicer.contact import embree_direct, exact
 
 __all__ = ["COMPILE_NOTICE", "sensing_kernels", "cold_among", "cold_kernels", "load_numba_target"]
 
@@ -49,13 +52,14 @@ COMPILE_NOTICE = "recon3d: compiling sensing kernels (once per machine, about 10
 """What ``recon3d run`` prints (stderr, not with ``--quiet``) when :func:`cold_kernels`."""
 
 
-def sensing_kernels() -> dict[str, object]:
-    """``module.function`` -> Python function of every cached kernel a default run compiles
-    (Embree backend; the exact and trimesh backends compile only some of them).
+def sensing_kernels(backend: str = "embree") -> dict[str, object]:
+    """``module.function`` -> Python function of every cached kernel a run on ``backend``
+    ("embree" or "exact") compiles.
 
     Every ``cache=True`` dispatcher of core2d (found by importing the core2d modules whose
-    source mentions numba, so a new kernel is seen without a list to keep) and, when Embree
-    loads, the ray function that :mod:`slicer.contact.embree_direct` compiles on first use.
+    source mentions numba, so a new kernel is seen without a list to keep) and the
+    backend's: when Embree loads, the ray function that :mod:`slicer.contact.embree_direct`
+    compiles on first use; the exact backend's ray function and batched cast.
     """
     found = {}
     for info in pkgutil.walk_packages(core2d.__path__, "core2d."):
@@ -70,7 +74,10 @@ def sensing_kernels() -> dict[str, object]:
             if (isinstance(value, Dispatcher) and value.py_func.__module__ == info.name
                     and isinstance(value._cache, FunctionCache)):
                 found[f"{info.name}.{name}"] = value.py_func
-    if embree_direct.available():
+    if backend == "exact":
+        found["slicer.contact.exact._ray"] = exact._ray
+        found["slicer.contact.exact._cast"] = exact._cast.py_func
+    elif embree_direct.available():
         found["slicer.contact.embree_direct._ray"] = embree_direct._ray
     return found
 
@@ -101,11 +108,13 @@ def cold_among(kernels: Mapping[str, object]) -> list[str]:
             if kernels[name].__code__.co_filename not in warm_files]
 
 
-def cold_kernels() -> list[str]:
-    """The kernels of :func:`sensing_kernels` that a run would compile (empty: all cached;
-    :func:`cold_among`). Reads numba's cache indexes only; the notice is then at worst one
-    line too many."""
-    return cold_among(sensing_kernels())
+def cold_kernels(backend: str = "embree") -> list[str]:
+    """The kernels of :func:`sensing_kernels` that a run on ``backend`` would compile (empty:
+    all cached, or a backend without kernels of its own to ask about; :func:`cold_among`).
+    Reads numba's cache indexes only; the notice is then at worst one line too many."""
+    if backend not in ("embree", "exact"):
+        return []
+    return cold_among(sensing_kernels(backend))
 
 
 def load_numba_target() -> None:

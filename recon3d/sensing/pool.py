@@ -375,10 +375,10 @@ def _compile_here(families: list, settings: SenseSettings, tasks: list, out: lis
     workers do not wait for it (:func:`sense_all` does, at its end; stopped if the sensing
     raises: a Ctrl-C does not wait for it). The two compiles take about as long (10 - 12 CPU
     s each on a slow day), so waiting for it here cost up to a few seconds of both cores.
-    :func:`cold_kernels` reads numba's cache indexes only; other backends compile a subset
-    of the kernels and are not asked about.
+    :func:`cold_kernels` reads numba's cache indexes only (the Embree and exact backends'
+    kernels; the trimesh backend has no ray function and compiles none of the ray engine's).
     """
-    if settings.backend != "embree" or len(tasks) < 2 or not cold_kernels():
+    if len(tasks) < 2 or not cold_kernels(settings.backend):
         return 0, None
     # the other core compiles the kernels of the scores and coloured ground truth meanwhile
     side = Side(compile_scores) if can_fork() else None

@@ -6,7 +6,8 @@ cross-section (closed loops in the plane's 2D frame) and a contact model
 in-plane ray queries with Embree (``'embree'``, needs ``embreex``), with
 trimesh's generic ray engine (``'trimesh'``) or exactly against the contour
 (``'exact'``); see :mod:`core2d.sim.contact` for the contract. Importing
-slicer does not import ``embreex``.
+slicer does not import ``embreex``, nor numba: :class:`ExactContact` (compiled) loads on
+first use.
 
 Examples
 --------
@@ -22,8 +23,9 @@ Examples
 >>> round(float(d[0]), 9), np.round(n[0], 3).tolist()
 (1.0, [0.098, -0.995])
 """
+import importlib
+
 from slicer.contact import BACKENDS
-from slicer.contact.exact import ExactContact
 from slicer.contact.trimesh_ray import TrimeshContact
 from slicer.degenerate import mesh_scale, nudge_planes, nudge_report
 from slicer.planes import SlicePlane, frame_for_normal, make_planes, parse_axis
@@ -46,3 +48,13 @@ __all__ = [
     "ExactContact",
     "TrimeshContact",
 ]
+
+
+def __getattr__(name: str):
+    """``ExactContact`` on first use (its module compiles with numba, which the command
+    line's parser must not load)."""
+    if name == "ExactContact":
+        value = importlib.import_module("slicer.contact.exact").ExactContact
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'slicer' has no attribute {name!r}")

@@ -1,6 +1,6 @@
 """trimesh's generic ray engine as a third contact backend (slicer.contact.trimesh_ray).
 
-Checked against the exact 2D backend (pure numpy segment intersection on the
+Checked against the exact 2D backend (segment intersection against the
 reference contour) on random in-plane rays and on a full sensing run.
 """
 import numpy as np

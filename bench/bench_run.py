@@ -50,8 +50,9 @@ TARGETS = {"ratio": 2.0, "import": 0.5, "large": 15.0}
 
 _DRIVER = """
 import json, sys, time
+from recon3d.cli import main, run
+getattr(run, "libraries", lambda: None)()  # the libraries loaded as `recon3d run` loads them
 import recon3d.api as api
-from recon3d.cli import main
 box = {"sense": 0.0}
 inner = api.sense_mesh
 def timed(*a, **k):

@@ -47,7 +47,7 @@ from multiprocessing.connection import wait
 import numpy as np
 import trimesh
 
-from recon3d.io.side import Side, can_fork, frozen_heap
+from recon3d.io.side import Side, can_fork, frozen_heap, paused_collector
 from recon3d.records import Family, SliceRun
 from recon3d.score import compile_kernels as compile_scores
 from recon3d.sensing.kernels import cold_kernels, load_numba_target
@@ -318,28 +318,30 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
                    progress, beside, out: list, first: int, fork: bool) -> None:
     """:func:`sense_all` with ``jobs`` worker processes, from ``tasks[first]`` on."""
     global _STATE
-    if fork:
-        ctx, init, args = multiprocessing.get_context("fork"), None, ()
-        # inherited by the forked workers, every contact model built (built_contacts)
-        _STATE = WorkerState(settings, built_contacts(families, tasks[first:],
-                                                     settings.backend))
-    else:  # pragma: no cover - no fork on this platform
-        ctx, init = multiprocessing.get_context("spawn"), _rebuild
-        args = (np.asarray(mesh.vertices, dtype=np.float64),
-                np.asarray(mesh.faces, dtype=np.int64), settings)
     workers, done, thread = _Workers(), False, None
-    # the workers inherit this process's objects frozen, and this process's collector skips
-    # them while it waits for the replies (:func:`recon3d.io.side.frozen_heap`)
+    # forked workers inherit the heap frozen (before the contact models are built: a full
+    # collection there took 72 ms, large mesh) and every model built (built_contacts); the
+    # collector is paused while this process waits for them (0.15 CPU s, no cycles found)
     with frozen_heap():
         try:
+            if fork:
+                ctx, init, args = multiprocessing.get_context("fork"), None, ()
+                _STATE = WorkerState(settings, built_contacts(families, tasks[first:],
+                                                             settings.backend))
+            else:  # pragma: no cover - no fork on this platform
+                ctx, init = multiprocessing.get_context("spawn"), _rebuild
+                args = (np.asarray(mesh.vertices, dtype=np.float64),
+                        np.asarray(mesh.faces, dtype=np.int64), settings)
             workers.start(ctx, jobs, init, args)
-            if beside is not None:
-                thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
-                                          name="recon3d-beside")
-                thread.start()
-            order = [k for k in dispatch_order(families, tasks, settings.eps) if k >= first]
-            _run_pool(workers, tasks, settings, out, progress, order)
-            done = True
+            with paused_collector():
+                if beside is not None:
+                    thread = threading.Thread(target=_beside, args=(beside,), daemon=True,
+                                              name="recon3d-beside")
+                    thread.start()
+                order = dispatch_order(families, tasks, settings.eps)
+                order = [k for k in order if k >= first]
+                _run_pool(workers, tasks, settings, out, progress, order)
+                done = True
         finally:
             _STATE = None
             workers.stop(graceful=done)
@@ -373,8 +375,7 @@ def _compile_here(families: list, settings: SenseSettings, tasks: list, out: lis
     subdivision that the scores and the coloured ground truth use after the sensing
     (:func:`recon3d.score.compile_kernels`), on the core this process leaves idle; the
     workers do not wait for it (:func:`sense_all` does, at its end; stopped if the sensing
-    raises: a Ctrl-C does not wait for it). The two compiles take about as long (10 - 12 CPU
-    s each on a slow day), so waiting for it here cost up to a few seconds of both cores.
+    raises: a Ctrl-C does not wait for it): the two compiles take about as long.
     :func:`cold_kernels` reads numba's cache indexes only (the Embree and exact backends'
     kernels; the trimesh backend has no ray function and compiles none of the ray engine's).
     """

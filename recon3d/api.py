@@ -333,7 +333,9 @@ def run(source: Source, *, progress: Callable[[SliceRun], None] | None = None,
     Parameters
     ----------
     source : trimesh.Trimesh, scene name or mesh file path.
-    progress : callable(SliceRun), optional -- called as slices finish.
+    progress : callable(SliceRun), optional -- called as slices finish (with worker
+        processes, while the cyclic collector is paused: a garbage cycle it makes is
+        collected once the sensing ends).
     {params}
 
     Returns

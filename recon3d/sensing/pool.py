@@ -282,7 +282,7 @@ def sense_all(mesh: trimesh.Trimesh, families: list, settings: SenseSettings, ta
     settings : SenseSettings
     tasks : list of (family, index) or (family, index, eps)
     jobs : int -- worker processes (1: in this process).
-    progress : callable(SliceRun) or None -- called as slices finish.
+    progress : callable(SliceRun) or None -- called as slices finish (workers: collector paused).
     beside : callable() or None -- with worker processes, run in a thread of this process
         (which only waits for them) once they are forked, and joined before returning (so
         nothing forks while it runs): the parent's own preparations, e.g. importing

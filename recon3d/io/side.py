@@ -101,7 +101,7 @@ def paused_collector() -> Iterator[None]:
     imports of a run's libraries (about 280 collections, 0.09 - 0.13 s of a run's serial
     start, that free nothing: every object made is a module's, alive for the run), and the
     parent process while its sensing workers run (it only takes their slices back and
-    closes each slice's region: 0.3 CPU s of collections on the large mesh's 64 slices,
+    closes each slice's region: 0.23 - 0.27 CPU s of collections on the large mesh's 64 slices,
     on a core the workers need). Whatever became garbage meanwhile is found by the first
     collection after the block. The block's own objects are not frozen (:func:`frozen_heap`
     is for what exists before a fork).

@@ -321,7 +321,7 @@ def _sense_workers(mesh, families: list, settings: SenseSettings, tasks: list, j
     workers, done, thread = _Workers(), False, None
     # forked workers inherit the heap frozen (before the contact models are built: a full
     # collection there took 72 ms, large mesh) and every model built (built_contacts); the
-    # collector is paused while this process waits for them (0.15 CPU s, no cycles found)
+    # collector is paused while this process waits for them (~0.25 CPU s, no cycles found)
     with frozen_heap():
         try:
             if fork:
